@@ -1,0 +1,201 @@
+#pragma once
+
+#include <glide/material/material.h>
+#include <glide/mesh/mesh.h>
+#include <glide/scene/scene.h>
+#include <glide/study/manufactured_solution.h>
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace glide
+{
+  using VectorType = dealii::TrilinosWrappers::MPI::Vector;
+  using MatrixType = dealii::TrilinosWrappers::SparseMatrix;
+
+  /**
+   * The elastic bodies of a scene: mesh, finite element, DoFs,
+   * constraints, and the residual F(U) = f_int(U) - f_ext(t) with its
+   * Jacobian (P1.1, P1.2, P1.5). Plane strain, axisymmetric and 3D
+   * analyses share one assembly in which every kinematic quantity is a 3x3
+   * tensor: plane strain has zero out-of-plane gradient, axisymmetric
+   * analysis (x = r, y = z) adds the hoop term u_r / r and integrates with
+   * 2 pi r. A geometrically linear scene evaluates only the linear elastic
+   * law; the neo-Hookean law, and with it F, J and F^{-1}, exists only in
+   * geometrically nonlinear scenes (P4.2).
+   *
+   * Dirichlet conditions (fixed, displacement, XSYMM/YSYMM/ZSYMM, and
+   * u_r = 0 on the axis of axisymmetric scenes) are imposed on U itself:
+   * constraints_at(t) holds the values at load factor t, and the Newton
+   * system uses the homogeneous constraints, so every Newton update
+   * keeps them.
+   */
+  template <int dim>
+  class Elasticity
+  {
+  public:
+    Elasticity(const Scene &scene, MPI_Comm comm, dealii::TimerOutput &timer);
+
+    /// Mesh, DoFs, constraints, sparsity; checks every surface name and
+    /// function of the scene (InputError) before anything is computed.
+    void
+    setup();
+
+    /// Constraints with the prescribed values at load factor @p t.
+    dealii::AffineConstraints<double>
+    constraints_at(const double t) const;
+
+    /// F(U) at load factor @p t (condensed: zero on constrained rows).
+    void
+    residual(const VectorType &U, const double t, VectorType &F) const;
+
+    /// Jacobian dF/dU at @p U.
+    void
+    jacobian(const VectorType &U, MatrixType &J) const;
+
+    /// Total reaction force on each surface that carries a Dirichlet
+    /// condition: the unconstrained residual summed over its DoFs.
+    std::map<std::string, dealii::Tensor<1, dim>>
+    reactions(const VectorType &U, const double t) const;
+
+    /// L2 and H1-seminorm errors against the manufactured solution.
+    std::pair<double, double>
+    errors(const VectorType &U) const;
+
+    /// Near-null-space vectors for AMG: translations, and rotations
+    /// except in axisymmetric analysis.
+    std::vector<VectorType>
+    rigid_body_modes() const;
+
+    /// Scaling of residual rows so that the tolerance is unit-free: 1 /
+    /// (E_max A_ref), A_ref the mean boundary-face measure.
+    double
+    residual_scale() const
+    {
+      return 1. / (max_youngs_modulus * reference_area);
+    }
+
+    /// Length that makes displacements unit-free (scene size).
+    double
+    length_scale() const
+    {
+      return mesh.scene_size();
+    }
+
+    /// The list of effects this scene computes (P4.2), for the log.
+    std::vector<std::string>
+    active_effects() const;
+
+    const dealii::DoFHandler<dim> &
+    get_dof_handler() const
+    {
+      return dof_handler;
+    }
+    const dealii::Mapping<dim> &
+    get_mapping() const
+    {
+      return *mapping;
+    }
+    const dealii::IndexSet &
+    locally_owned() const
+    {
+      return owned;
+    }
+    const dealii::IndexSet &
+    locally_relevant() const
+    {
+      return relevant;
+    }
+    const MatrixType &
+    matrix_pattern() const
+    {
+      return pattern_matrix;
+    }
+    const Scene &
+    get_scene() const
+    {
+      return scene;
+    }
+    const dealii::parallel::distributed::Triangulation<dim> &
+    get_triangulation() const
+    {
+      return triangulation;
+    }
+    /// Hanging-node and homogeneous Dirichlet constraints of the Newton
+    /// updates.
+    const dealii::AffineConstraints<double> &
+    update_constraints() const
+    {
+      return homogeneous_constraints;
+    }
+    /// The named surfaces.
+    const Mesh<dim> &
+    get_mesh() const
+    {
+      return mesh;
+    }
+    /// The material law of body @p b (fresh object).
+    std::unique_ptr<Material>
+    material(const unsigned int b) const;
+
+    /// Boundary conditions whose surfaces carry symmetry type @p component
+    /// (0: XSYMM, 1: YSYMM, 2: ZSYMM), for contact.
+    const std::vector<dealii::types::boundary_id> &
+    symmetry_boundary_ids(const unsigned int component) const
+    {
+      return symmetry_ids[component];
+    }
+
+  private:
+    struct Load
+    {
+      const BoundaryConditionParameters *parameters;
+      std::set<dealii::types::boundary_id> ids;
+      std::unique_ptr<dealii::FunctionParser<dim>> function;
+    };
+    struct PointForce
+    {
+      std::unique_ptr<dealii::FunctionParser<dim>> function;
+      /// Vertex DoFs (locally owned) per component, with their positions.
+      std::vector<std::pair<std::array<dealii::types::global_dof_index, dim>, dealii::Point<dim>>> nodes;
+    };
+
+    void
+    assemble(const VectorType &U, const double t, VectorType *F, MatrixType *J, const bool condense) const;
+
+    std::unique_ptr<dealii::FunctionParser<dim>>
+    parse_function(const std::string &expression, const unsigned int n_components, const std::string &parameter) const;
+
+    const Scene &                             scene;
+    MPI_Comm                                  comm;
+    dealii::TimerOutput &                     timer;
+    dealii::parallel::distributed::Triangulation<dim> triangulation;
+    Mesh<dim>                                 mesh;
+    dealii::FESystem<dim>                     fe;
+    std::unique_ptr<dealii::Mapping<dim>>     mapping;
+    dealii::DoFHandler<dim>                   dof_handler;
+    dealii::IndexSet                          owned, relevant;
+    dealii::AffineConstraints<double>         homogeneous_constraints;
+    MatrixType                                pattern_matrix;
+    std::vector<Load>                         dirichlet, surface_loads;
+    std::vector<PointForce>                   point_forces;
+    std::vector<std::unique_ptr<dealii::FunctionParser<dim>>> body_forces;
+    std::unique_ptr<ManufacturedSolution<dim>> exact;
+    std::vector<dealii::types::boundary_id>   symmetry_ids[3];
+    double max_youngs_modulus = 1., reference_area = 1.;
+    bool   axisymmetric;
+  };
+} // namespace glide

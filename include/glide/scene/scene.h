@@ -1,0 +1,95 @@
+#pragma once
+
+#include <glide/material/material.h>
+#include <glide/mechanics/boundary_conditions.h>
+#include <glide/mesh/mesh_parameters.h>
+#include <glide/output/output_parameters.h>
+#include <glide/solver/solver_parameters.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace glide
+{
+  /// The analysis types of P1.1.
+  enum class AnalysisType
+  {
+    plane_strain,
+    axisymmetric,
+    three_dimensional
+  };
+
+  /// One body: its mesh, its material, its body force.
+  struct BodyParameters
+  {
+    std::string        name;
+    MeshParameters     mesh;
+    MaterialParameters material;
+    /// Body force per unit reference volume, ';'-separated components.
+    std::string        body_force;
+  };
+
+  /**
+   * A scene as read from a `.prm` file (P4.1). Reading happens in two
+   * passes: the first reads the lists of names (bodies, boundary
+   * conditions, node sets), the second declares one subsection per name and
+   * reads the whole file strictly, so that a misspelt entry anywhere is an
+   * error that names the file and line. All cross-checks (names that must
+   * exist, combinations that are not supported) happen here, before
+   * anything is computed or written.
+   */
+  class Scene
+  {
+  public:
+    std::string  file;      ///< the scene file, as given
+    std::string  directory; ///< its directory, for relative mesh paths
+    std::string  name;      ///< the scene name (default: file name stem)
+    unsigned int dimension = 2;
+    AnalysisType analysis  = AnalysisType::plane_strain;
+    unsigned int degree    = 1;
+    bool         geometric_nonlinearity = false;
+
+    std::vector<BodyParameters>              bodies;
+    std::vector<BoundaryConditionParameters> boundary_conditions;
+    std::vector<NodeSetParameters>           node_sets;
+    /// Name of the manufactured solution for verification, or "none".
+    std::string                              manufactured_solution = "none";
+
+    NonlinearSolverParameters nonlinear_solver;
+    LinearSolverParameters    linear_solver;
+    LoadSteppingParameters    load_stepping;
+    OutputParameters          output;
+
+    /**
+     * Read and check @p filename. @p overrides are "path=value" strings
+     * from the command line (`--set "Output/Directory=out"`), applied after
+     * the file. Throws InputError on any mistake.
+     */
+    static Scene
+    read(const std::string &             filename,
+         const std::vector<std::string> &overrides = {});
+
+    /// Print every parameter with default, pattern and documentation, with
+    /// one example body, boundary condition and node set.
+    static void
+    print_parameters(std::ostream &out, const std::string &format);
+
+    /// "plane strain", "axisymmetric" or "3d".
+    std::string
+    analysis_name() const;
+
+  private:
+    static void
+    declare_parameters(dealii::ParameterHandler &      prm,
+                       const std::vector<std::string> &bodies,
+                       const std::vector<std::string> &boundary_conditions,
+                       const std::vector<std::string> &node_sets);
+    void
+    parse_parameters(dealii::ParameterHandler &prm);
+    void
+    check() const;
+  };
+} // namespace glide

@@ -1,0 +1,62 @@
+#pragma once
+
+#include <glide/solver/solver_parameters.h>
+
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+class Epetra_MultiVector;
+
+namespace glide
+{
+  /**
+   * The linear solver inside each Newton iteration (P3.3): a sparse direct
+   * solver (Amesos MUMPS or KLU; both accept unsymmetric matrices and
+   * distributed matrices), or GMRES with Trilinos ML algebraic multigrid
+   * whose near null space is given by the caller (rigid-body modes).
+   */
+  class LinearSolver
+  {
+  public:
+    LinearSolver(const LinearSolverParameters &parameters, MPI_Comm comm);
+    ~LinearSolver();
+
+    /// Decide between direct and AMG for a problem of @p n_dofs DoFs in
+    /// @p dim dimensions; returns "direct" or "amg".
+    std::string
+    choose(const unsigned int dim, const dealii::types::global_dof_index n_dofs);
+
+    /// Factorize (direct) or build the AMG hierarchy for @p matrix.
+    void
+    initialize(const dealii::TrilinosWrappers::SparseMatrix &        matrix,
+               const std::vector<dealii::TrilinosWrappers::MPI::Vector> &near_null_space);
+
+    /// Solve matrix * x = b to @p relative_tolerance (ignored by the direct
+    /// solver); returns the number of Krylov iterations (1 for direct).
+    /// Throws std::runtime_error if the solver fails.
+    unsigned int
+    solve(const dealii::TrilinosWrappers::MPI::Vector &b,
+          dealii::TrilinosWrappers::MPI::Vector &      x,
+          const double                                 relative_tolerance);
+
+    /// "direct (MUMPS)", "AMG-GMRES", ... for the log.
+    std::string
+    description() const;
+
+  private:
+    const LinearSolverParameters                      parameters;
+    MPI_Comm                                          comm;
+    std::string                                       kind;
+    const dealii::TrilinosWrappers::SparseMatrix *    matrix = nullptr;
+    dealii::SolverControl                             direct_control;
+    std::unique_ptr<dealii::TrilinosWrappers::SolverDirect>     direct;
+    std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG>  amg;
+    std::unique_ptr<Epetra_MultiVector>                         null_space;
+  };
+} // namespace glide

@@ -1,0 +1,60 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+
+namespace glide
+{
+  /// Settings of the KINSOL-driven Newton iteration of each load step.
+  struct NonlinearSolverParameters
+  {
+    /// Newton with full steps, or with KINSOL's line search.
+    std::string strategy = "line search";
+    /// Stop when the scaled max-norm of the residual is below this. The
+    /// residual is scaled by 1 / (E_max * A_ref), A_ref the mean boundary
+    /// facet measure, so the tolerance is unit-free (a strain-like number).
+    double       tolerance                = 1e-10;
+    unsigned int maximum_iterations       = 25;
+    /// Jacobian re-use: 1 assembles the Jacobian every iteration.
+    unsigned int maximum_setup_calls      = 1;
+
+    static void
+    declare_parameters(dealii::ParameterHandler &prm);
+    void
+    parse_parameters(dealii::ParameterHandler &prm);
+  };
+
+  /// Settings of the linear solver used inside each Newton iteration.
+  struct LinearSolverParameters
+  {
+    /// "automatic", "direct" or "amg".
+    std::string  type                    = "automatic";
+    /// Amesos solver for "direct": "MUMPS" or "KLU".
+    std::string  direct_solver           = "MUMPS";
+    /// Largest number of DoFs for which "automatic" picks the direct solver
+    /// in 3D (2D problems always get the direct solver).
+    unsigned int automatic_direct_limit  = 200000;
+    double       relative_tolerance      = 1e-8;
+    unsigned int maximum_iterations      = 2000;
+
+    static void
+    declare_parameters(dealii::ParameterHandler &prm);
+    void
+    parse_parameters(dealii::ParameterHandler &prm);
+  };
+
+  /// Load stepping: the load factor t runs from 0 to 1 in equal steps;
+  /// failed steps are cut back and retried.
+  struct LoadSteppingParameters
+  {
+    unsigned int number_of_steps     = 1;
+    unsigned int maximum_cut_backs   = 6;
+    double       cut_back_factor     = 0.5;
+
+    static void
+    declare_parameters(dealii::ParameterHandler &prm);
+    void
+    parse_parameters(dealii::ParameterHandler &prm);
+  };
+} // namespace glide

@@ -1,0 +1,107 @@
+// glide: finite-element contact between elastic bodies. This is the
+// program: it reads a scene (.prm), dispatches on its dimension once, and
+// turns every error into one message and a non-zero exit status.
+
+#include <glide/problem.h>
+#include <glide/scene/input_error.h>
+#include <glide/scene/scene.h>
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
+
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace
+{
+  const char *usage =
+    "Usage: glide [options] SCENE.prm\n"
+    "\n"
+    "Runs the scene and writes VTU/PVD files and statistics.csv to\n"
+    "<Output/Directory>/<Scene name>/ (default output/<scene file name>/).\n"
+    "\n"
+    "Options:\n"
+    "  --help                     print this help and exit\n"
+    "  --print-parameters [FMT]   print every scene parameter with default,\n"
+    "                             pattern and documentation; FMT is prm\n"
+    "                             (default), json or xml\n"
+    "  --set \"Path/Entry=value\"   override a scene parameter after reading\n"
+    "                             the file, e.g. --set \"Body block/Refinement/\n"
+    "                             Global refinements=3\" (repeatable)\n"
+    "\n"
+    "Exit status: 0 success, 1 input error, 2 a load step failed, 3 internal\n"
+    "error. Run in parallel with mpirun -np N glide SCENE.prm.\n";
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const MPI_Comm comm = MPI_COMM_WORLD;
+  const bool     root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+
+  try
+    {
+      std::vector<std::string> args(argv + 1, argv + argc), overrides;
+      std::string              scene_file;
+      for (unsigned int i = 0; i < args.size(); ++i)
+        {
+          const std::string &a = args[i];
+          if (a == "--help" || a == "-h")
+            {
+              if (root)
+                std::cout << usage;
+              return 0;
+            }
+          if (a == "--print-parameters")
+            {
+              std::string format = "prm";
+              if (i + 1 < args.size() && args[i + 1].rfind("--", 0) != 0)
+                format = args[++i];
+              glide::require(format == "prm" || format == "json" || format == "xml",
+                             "--print-parameters takes prm, json or xml, not '" + format + "'.");
+              if (root)
+                glide::Scene::print_parameters(std::cout, format);
+              return 0;
+            }
+          if (a == "--set")
+            {
+              glide::require(i + 1 < args.size(), "--set needs an argument \"Path/Entry=value\".");
+              overrides.push_back(args[++i]);
+              continue;
+            }
+          glide::require(a.rfind("--", 0) != 0, "Unknown option '" + a + "'; see 'glide --help'.");
+          glide::require(scene_file.empty(),
+                         "More than one scene file given ('" + scene_file + "' and '" + a +
+                           "'); glide runs one scene at a time.");
+          scene_file = a;
+        }
+      glide::require(!scene_file.empty(), std::string("No scene file given.\n") + usage);
+
+      const glide::Scene scene = glide::Scene::read(scene_file, overrides);
+      if (scene.dimension == 2)
+        glide::run_scene<2>(scene, comm);
+      else
+        glide::run_scene<3>(scene, comm);
+    }
+  catch (const glide::InputError &e)
+    {
+      if (root)
+        std::cerr << "glide: input error: " << e.what() << std::endl;
+      return 1;
+    }
+  catch (const dealii::ExceptionBase &e)
+    {
+      if (root)
+        std::cerr << "glide: internal error: " << e.what() << std::endl;
+      return 3;
+    }
+  catch (const std::exception &e)
+    {
+      if (root)
+        std::cerr << "glide: error: " << e.what() << std::endl;
+      return 2;
+    }
+  return 0;
+}

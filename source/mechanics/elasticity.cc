@@ -1,0 +1,620 @@
+#include <glide/mechanics/elasticity.h>
+#include <glide/scene/input_error.h>
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <sstream>
+
+namespace glide
+{
+  using namespace dealii;
+
+  namespace
+  {
+    /// Embed a dim-dimensional displacement gradient into 3x3, adding the
+    /// hoop term u_r / r in axisymmetric analysis.
+    template <int dim>
+    Tensor2
+    embed(const Tensor<2, dim> &grad, const double hoop)
+    {
+      Tensor2 H;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          H[i][j] = grad[i][j];
+      if (dim == 2)
+        H[2][2] = hoop;
+      return H;
+    }
+  } // namespace
+
+  template <int dim>
+  Elasticity<dim>::Elasticity(const Scene &scene, MPI_Comm comm, TimerOutput &timer)
+    : scene(scene)
+    , comm(comm)
+    , timer(timer)
+    , triangulation(comm,
+                    typename Triangulation<dim>::MeshSmoothing(
+                      Triangulation<dim>::limit_level_difference_at_vertices))
+    , fe(FE_Q<dim>(scene.degree), dim)
+    , dof_handler(triangulation)
+    , axisymmetric(scene.analysis == AnalysisType::axisymmetric)
+  {}
+
+  template <int dim>
+  std::unique_ptr<FunctionParser<dim>>
+  Elasticity<dim>::parse_function(const std::string &expression,
+                                  const unsigned int n_components,
+                                  const std::string &parameter) const
+  {
+    auto f = std::make_unique<FunctionParser<dim>>(n_components);
+    const std::string vars = (dim == 2 ? "x,y,t" : "x,y,z,t");
+    try
+      {
+        f->initialize(vars,
+                      Utilities::split_string_list(expression, ';'),
+                      {{"pi", numbers::PI}},
+                      true);
+        Vector<double> v(n_components);
+        f->vector_value(Point<dim>(), v); // muparser compiles lazily
+      }
+    catch (const ExceptionBase &e)
+      {
+        std::ostringstream s;
+        e.print_info(s);
+        throw InputError("Parameter '" + parameter + "' = '" + expression +
+                         "' is not a valid expression in " + vars + ": " + s.str());
+      }
+    catch (const std::exception &e)
+      {
+        throw InputError("Parameter '" + parameter + "' = '" + expression +
+                         "' is not a valid expression in " + vars + ": " + e.what());
+      }
+    return f;
+  }
+
+  template <int dim>
+  std::unique_ptr<Material>
+  Elasticity<dim>::material(const unsigned int b) const
+  {
+    return create_material(scene.bodies[b].material, scene.geometric_nonlinearity);
+  }
+
+  template <int dim>
+  void
+  Elasticity<dim>::setup()
+  {
+    {
+      TimerOutput::Scope t(timer, "mesh");
+      mesh.build(scene, triangulation);
+    }
+    TimerOutput::Scope t(timer, "setup");
+    mapping = std::make_unique<MappingQ<dim>>(scene.degree);
+
+    max_youngs_modulus = 0;
+    for (const auto &b : scene.bodies)
+      max_youngs_modulus = std::max(max_youngs_modulus, b.material.youngs_modulus);
+
+    if (scene.manufactured_solution != "none")
+      {
+        const auto &m = scene.bodies[0].material;
+        for (const auto &b : scene.bodies)
+          require(b.material.youngs_modulus == m.youngs_modulus &&
+                    b.material.poissons_ratio == m.poissons_ratio,
+                  "Parameter 'Verification/Manufactured solution' needs the "
+                  "same material in every body.");
+        exact = std::make_unique<ManufacturedSolution<dim>>(axisymmetric, m.lambda(), m.mu());
+      }
+    for (const auto &b : scene.bodies)
+      body_forces.push_back(b.body_force.empty() ?
+                              nullptr :
+                              parse_function(b.body_force, dim, "Body " + b.name + "/Body force"));
+
+    std::map<std::string, const NodeSetParameters *> node_sets;
+    for (const auto &ns : scene.node_sets)
+      node_sets[ns.name] = &ns;
+
+    dof_handler.distribute_dofs(fe);
+    owned = dof_handler.locally_owned_dofs();
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
+
+    for (const auto &bc : scene.boundary_conditions)
+      {
+        const std::string path = "Boundary condition " + bc.name;
+        if (bc.type == BoundaryConditionType::force)
+          {
+            PointForce pf;
+            pf.function = parse_function(bc.function, dim, path + "/Function");
+            std::vector<std::vector<double>> points;
+            double                           tol = 0;
+            std::set<types::boundary_id>     ids;
+            if (node_sets.count(bc.surface))
+              {
+                points = node_sets[bc.surface]->points;
+                tol    = node_sets[bc.surface]->tolerance;
+              }
+            else
+              ids = mesh.surface(bc.surface, path + "/Surface");
+            std::set<types::global_dof_index> seen;
+            std::vector<unsigned int>         found(points.size(), 0);
+            for (const auto &cell : dof_handler.active_cell_iterators())
+              if (cell->is_locally_owned())
+                for (const auto v : cell->vertex_indices())
+                  {
+                    const Point<dim> x   = cell->vertex(v);
+                    bool             hit = false;
+                    for (unsigned int i = 0; i < points.size(); ++i)
+                      {
+                        Point<dim> p;
+                        for (unsigned int d = 0; d < dim; ++d)
+                          p[d] = points[i][d];
+                        if (x.distance(p) <= tol)
+                          {
+                            hit = true;
+                            ++found[i];
+                          }
+                      }
+                    if (!ids.empty())
+                      for (const auto f : cell->face_indices())
+                        if (cell->face(f)->at_boundary() &&
+                            ids.count(cell->face(f)->boundary_id()))
+                          for (const auto fv : cell->face(f)->vertex_indices())
+                            if (cell->face(f)->vertex_index(fv) == cell->vertex_index(v))
+                              hit = true;
+                    if (!hit)
+                      continue;
+                    std::array<types::global_dof_index, dim> dofs;
+                    for (unsigned int c = 0; c < dim; ++c)
+                      dofs[c] = cell->vertex_dof_index(v, c);
+                    if (owned.is_element(dofs[0]) && seen.insert(dofs[0]).second)
+                      pf.nodes.emplace_back(dofs, x);
+                  }
+            for (unsigned int i = 0; i < points.size(); ++i)
+              {
+                std::ostringstream p;
+                for (const auto c : points[i])
+                  p << (&c == &points[i][0] ? "" : ", ") << c;
+                require(Utilities::MPI::sum(found[i], comm) > 0,
+                        "Node set '" + bc.surface + "': no mesh vertex within " +
+                          std::to_string(tol) + " of the point (" + p.str() +
+                          "); check 'Node set " + bc.surface +
+                          "/Points' or raise its 'Tolerance'.");
+              }
+            require(Utilities::MPI::sum(static_cast<unsigned int>(pf.nodes.size()), comm) > 0,
+                    "Parameter '" + path + "/Surface' = '" + bc.surface +
+                      "' selects no node.");
+            point_forces.push_back(std::move(pf));
+            continue;
+          }
+
+        Load load;
+        load.parameters = &bc;
+        load.ids        = mesh.surface(bc.surface, path + "/Surface");
+        if (bc.type == BoundaryConditionType::displacement && !exact)
+          load.function = parse_function(bc.function, dim, path + "/Function");
+        if (bc.type == BoundaryConditionType::traction)
+          load.function = parse_function(bc.function, dim, path + "/Function");
+        if (bc.type == BoundaryConditionType::pressure)
+          load.function = parse_function(bc.function, 1, path + "/Function");
+        if (bc.is_symmetry())
+          for (const auto id : load.ids)
+            symmetry_ids[bc.symmetry_component()].push_back(id);
+        if (bc.is_dirichlet())
+          dirichlet.push_back(std::move(load));
+        else
+          surface_loads.push_back(std::move(load));
+      }
+
+    homogeneous_constraints = constraints_at(0.);
+    for (const auto i : homogeneous_constraints.get_lines())
+      homogeneous_constraints.set_inhomogeneity(i.index, 0.);
+
+    DynamicSparsityPattern dsp(relevant);
+    DoFTools::make_sparsity_pattern(dof_handler, dsp, homogeneous_constraints, false);
+    SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
+    pattern_matrix.reinit(owned, owned, dsp, comm);
+
+    // Reference area of a boundary face (per unit thickness in plane strain,
+    // times 2 pi r in axisymmetric analysis).
+    double area = 0, count = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary())
+            {
+              area += face->measure() *
+                      (axisymmetric ? 2 * numbers::PI * std::max(face->center()[0], face->measure()) : 1.);
+              count += 1;
+            }
+    reference_area = Utilities::MPI::sum(area, comm) / Utilities::MPI::sum(count, comm);
+  }
+
+  template <int dim>
+  AffineConstraints<double>
+  Elasticity<dim>::constraints_at(const double t) const
+  {
+    AffineConstraints<double> c;
+    c.reinit(relevant);
+    DoFTools::make_hanging_node_constraints(dof_handler, c);
+    for (const auto &d : dirichlet)
+      {
+        const auto &bc = *d.parameters;
+        ComponentMask mask(dim, true);
+        if (bc.is_symmetry())
+          {
+            mask = ComponentMask(dim, false);
+            mask.set(bc.symmetry_component(), true);
+          }
+        else if (bc.type == BoundaryConditionType::displacement)
+          for (unsigned int i = 0; i < dim; ++i)
+            mask.set(i, bc.components[i]);
+        std::map<types::boundary_id, const Function<dim> *> functions;
+        Functions::ZeroFunction<dim> zero(dim);
+        const Function<dim> *f = &zero;
+        if (bc.type == BoundaryConditionType::displacement)
+          {
+            if (exact)
+              f = exact.get();
+            else
+              {
+                d.function->set_time(t);
+                f = d.function.get();
+              }
+          }
+        for (const auto id : d.ids)
+          functions[id] = f;
+        VectorTools::interpolate_boundary_values(*mapping, dof_handler, functions, c, mask);
+      }
+    if (axisymmetric)
+      {
+        // u_r = 0 on the axis r = 0: regularity of a solid of revolution.
+        const double tol = 1e-10 * mesh.scene_size();
+        std::vector<types::global_dof_index> dofs(fe.n_dofs_per_face());
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (!cell->is_artificial())
+            for (const auto f : cell->face_indices())
+              {
+                const auto face = cell->face(f);
+                bool on_axis = true;
+                for (const auto v : face->vertex_indices())
+                  on_axis = on_axis && std::abs(face->vertex(v)[0]) < tol;
+                if (!on_axis)
+                  continue;
+                face->get_dof_indices(dofs);
+                for (unsigned int i = 0; i < dofs.size(); ++i)
+                  if (fe.face_system_to_component_index(i).first == 0 &&
+                      c.can_store_line(dofs[i]) && !c.is_constrained(dofs[i]))
+                    c.add_line(dofs[i]);
+              }
+      }
+    c.close();
+    return c;
+  }
+
+  template <int dim>
+  void
+  Elasticity<dim>::residual(const VectorType &U, const double t, VectorType &F) const
+  {
+    TimerOutput::Scope s(timer, "assembly: residual");
+    assemble(U, t, &F, nullptr, true);
+  }
+
+  template <int dim>
+  void
+  Elasticity<dim>::jacobian(const VectorType &U, MatrixType &J) const
+  {
+    TimerOutput::Scope s(timer, "assembly: Jacobian");
+    assemble(U, 0., nullptr, &J, true);
+  }
+
+  template <int dim>
+  void
+  Elasticity<dim>::assemble(const VectorType &U,
+                            const double      t,
+                            VectorType *      F,
+                            MatrixType *      J,
+                            const bool        condense) const
+  {
+    VectorType U_ghost(owned, relevant, comm);
+    U_ghost = U;
+    if (F)
+      *F = 0;
+    if (J)
+      *J = 0;
+
+    const QGauss<dim>     quadrature(scene.degree + 1);
+    const QGauss<dim - 1> face_quadrature(scene.degree + 1);
+    FEValues<dim>         fe_values(*mapping, fe, quadrature,
+                            update_values | update_gradients | update_quadrature_points | update_JxW_values);
+    FEFaceValues<dim> fe_face(*mapping, fe, face_quadrature,
+                              update_values | update_quadrature_points | update_JxW_values | update_normal_vectors);
+
+    const unsigned int n = fe.n_dofs_per_cell(), nq = quadrature.size();
+    FullMatrix<double> cell_matrix(n, n);
+    Vector<double>     cell_rhs(n);
+    std::vector<types::global_dof_index> dofs(n);
+    std::vector<Tensor<2, dim>> grads(nq);
+    std::vector<Tensor<1, dim>> values(nq);
+    const FEValuesExtractors::Vector u(0);
+
+    std::vector<std::unique_ptr<Material>> materials;
+    for (unsigned int b = 0; b < scene.bodies.size(); ++b)
+      materials.push_back(material(b));
+    for (const auto &f : body_forces)
+      if (f)
+        f->set_time(t);
+    for (const auto &l : surface_loads)
+      l.function->set_time(t);
+
+    std::vector<unsigned int> component(n);
+    for (unsigned int k = 0; k < n; ++k)
+      component[k] = fe.system_to_component_index(k).first;
+    std::vector<Tensor2> G(n), AG(n);
+    Tensor2              P;
+    Vector<double>       load(dim);
+
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        fe_values.reinit(cell);
+        cell_matrix = 0;
+        cell_rhs    = 0;
+        Material &law = *materials[cell->material_id()];
+        fe_values[u].get_function_gradients(U_ghost, grads);
+        if (axisymmetric)
+          fe_values[u].get_function_values(U_ghost, values);
+        const auto *body_force = body_forces[cell->material_id()].get();
+
+        for (unsigned int q = 0; q < nq; ++q)
+          {
+            const Point<dim> &x = fe_values.quadrature_point(q);
+            const double      r = x[0];
+            const double      w = fe_values.JxW(q) * (axisymmetric ? 2 * numbers::PI * r : 1.);
+            law.evaluate(embed<dim>(grads[q], axisymmetric ? values[q][0] / r : 0.), P);
+
+            Tensor<1, dim> b;
+            if (exact)
+              b = exact->body_force(x);
+            else if (body_force)
+              {
+                body_force->vector_value(x, load);
+                for (unsigned int d = 0; d < dim; ++d)
+                  b[d] = load[d];
+              }
+
+            for (unsigned int k = 0; k < n; ++k)
+              {
+                const unsigned int   c    = component[k];
+                const Tensor<1, dim> dphi = fe_values.shape_grad(k, q);
+                const double         phi  = fe_values.shape_value(k, q);
+                const double         hoop = (axisymmetric && c == 0) ? phi / r : 0.;
+                if (F)
+                  {
+                    double v = 0;
+                    for (unsigned int j = 0; j < dim; ++j)
+                      v += P[c][j] * dphi[j];
+                    v += P[2][2] * hoop;
+                    cell_rhs(k) += (v - b[c] * phi) * w;
+                  }
+                if (J)
+                  {
+                    G[k] = 0;
+                    for (unsigned int j = 0; j < dim; ++j)
+                      G[k][c][j] = dphi[j];
+                    G[k][2][2] = hoop;
+                  }
+              }
+            if (J)
+              {
+                for (unsigned int l = 0; l < n; ++l)
+                  AG[l] = law.tangent(G[l]);
+                for (unsigned int k = 0; k < n; ++k)
+                  {
+                    const unsigned int c = component[k];
+                    for (unsigned int l = 0; l < n; ++l)
+                      {
+                        double v = 0;
+                        for (unsigned int j = 0; j < dim; ++j)
+                          v += AG[l][c][j] * G[k][c][j];
+                        v += AG[l][2][2] * G[k][2][2];
+                        cell_matrix(k, l) += v * w;
+                      }
+                  }
+              }
+          }
+
+        // Tractions and pressures (dead loads on the reference surface).
+        if (F && !surface_loads.empty())
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary())
+              for (const auto &l : surface_loads)
+                if (l.ids.count(cell->face(f)->boundary_id()))
+                  {
+                    fe_face.reinit(cell, f);
+                    for (unsigned int q = 0; q < face_quadrature.size(); ++q)
+                      {
+                        const Point<dim> &x = fe_face.quadrature_point(q);
+                        const double      w = fe_face.JxW(q) * (axisymmetric ? 2 * numbers::PI * x[0] : 1.);
+                        Tensor<1, dim>    tr;
+                        if (l.parameters->type == BoundaryConditionType::pressure)
+                          tr = -l.function->value(x) * fe_face.normal_vector(q);
+                        else
+                          {
+                            l.function->vector_value(x, load);
+                            for (unsigned int d = 0; d < dim; ++d)
+                              tr[d] = load[d];
+                          }
+                        for (unsigned int k = 0; k < n; ++k)
+                          cell_rhs(k) -= tr[component[k]] * fe_face.shape_value(k, q) * w;
+                      }
+                  }
+
+        cell->get_dof_indices(dofs);
+        if (condense)
+          {
+            if (F && J)
+              homogeneous_constraints.distribute_local_to_global(cell_matrix, cell_rhs, dofs, *J, *F);
+            else if (F)
+              homogeneous_constraints.distribute_local_to_global(cell_rhs, dofs, *F);
+            else
+              homogeneous_constraints.distribute_local_to_global(cell_matrix, dofs, *J);
+          }
+        else if (F)
+          F->add(dofs, cell_rhs);
+      }
+
+    // Concentrated forces at vertices.
+    if (F)
+      for (const auto &pf : point_forces)
+        {
+          pf.function->set_time(t);
+          for (const auto &[node_dofs, x] : pf.nodes)
+            {
+              pf.function->vector_value(x, load);
+              std::vector<types::global_dof_index> idx(node_dofs.begin(), node_dofs.end());
+              Vector<double>                       f(dim);
+              for (unsigned int d = 0; d < dim; ++d)
+                f[d] = -load[d];
+              if (condense)
+                homogeneous_constraints.distribute_local_to_global(f, idx, *F);
+              else
+                F->add(idx, f);
+            }
+        }
+
+    if (F)
+      F->compress(VectorOperation::add);
+    if (J)
+      J->compress(VectorOperation::add);
+  }
+
+  template <int dim>
+  std::map<std::string, Tensor<1, dim>>
+  Elasticity<dim>::reactions(const VectorType &U, const double t) const
+  {
+    VectorType F(owned, comm);
+    assemble(U, t, &F, nullptr, false);
+    std::map<std::string, Tensor<1, dim>> result;
+    for (const auto &d : dirichlet)
+      {
+        const std::string &name = d.parameters->surface;
+        if (result.count(name))
+          continue;
+        IndexSet       dofs;
+        DoFTools::extract_boundary_dofs(dof_handler, ComponentMask(), dofs, d.ids);
+        Tensor<1, dim> sum;
+        std::vector<types::global_dof_index> local_dofs(fe.n_dofs_per_cell());
+        // Component of each DoF: walk the cells once.
+        std::set<types::global_dof_index> counted;
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              cell->get_dof_indices(local_dofs);
+              for (unsigned int i = 0; i < local_dofs.size(); ++i)
+                if (owned.is_element(local_dofs[i]) && dofs.is_element(local_dofs[i]) &&
+                    counted.insert(local_dofs[i]).second)
+                  sum[fe.system_to_component_index(i).first] += F(local_dofs[i]);
+            }
+        result[name] = Utilities::MPI::sum(sum, comm);
+      }
+    return result;
+  }
+
+  template <int dim>
+  std::pair<double, double>
+  Elasticity<dim>::errors(const VectorType &U) const
+  {
+    Assert(exact, ExcInternalError());
+    VectorType U_ghost(owned, relevant, comm);
+    U_ghost = U;
+    Vector<float>     cellwise(triangulation.n_active_cells());
+    const QGauss<dim> q(scene.degree + 2);
+    VectorTools::integrate_difference(*mapping, dof_handler, U_ghost, *exact, cellwise, q, VectorTools::L2_norm);
+    const double l2 = VectorTools::compute_global_error(triangulation, cellwise, VectorTools::L2_norm);
+    VectorTools::integrate_difference(*mapping, dof_handler, U_ghost, *exact, cellwise, q, VectorTools::H1_seminorm);
+    const double h1 = VectorTools::compute_global_error(triangulation, cellwise, VectorTools::H1_seminorm);
+    return {l2, h1};
+  }
+
+  template <int dim>
+  std::vector<VectorType>
+  Elasticity<dim>::rigid_body_modes() const
+  {
+    const unsigned int n_modes = axisymmetric ? dim : dim * (dim + 1) / 2;
+    std::vector<VectorType> modes(n_modes, VectorType(owned, comm));
+    const auto &points = fe.get_unit_support_points();
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            if (owned.is_element(dofs[i]))
+              {
+                const unsigned int c = fe.system_to_component_index(i).first;
+                const Point<dim>   x = mapping->transform_unit_to_real_cell(cell, points[i]);
+                modes[c](dofs[i]) = 1.;
+                if (axisymmetric)
+                  continue;
+                if (dim == 2)
+                  modes[2](dofs[i]) = (c == 0 ? -x[1] : x[0]);
+                else
+                  {
+                    // rotations about z, x, y
+                    const unsigned int a[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+                    for (unsigned int m = 0; m < 3; ++m)
+                      {
+                        const unsigned int p = a[m][0], q = a[m][1];
+                        if (c == p)
+                          modes[dim + m](dofs[i]) = -x[q];
+                        else if (c == q)
+                          modes[dim + m](dofs[i]) = x[p];
+                      }
+                  }
+              }
+        }
+    for (auto &m : modes)
+      m.compress(VectorOperation::insert);
+    return modes;
+  }
+
+  template <int dim>
+  std::vector<std::string>
+  Elasticity<dim>::active_effects() const
+  {
+    std::vector<std::string> e;
+    e.push_back(std::string(scene.geometric_nonlinearity ? "finite-strain neo-Hookean" : "small-strain linear elastic") +
+                " bodies (" + scene.analysis_name() + ", Q" + std::to_string(scene.degree) + ")");
+    if (!dirichlet.empty() || axisymmetric)
+      e.push_back("prescribed displacements" + std::string(axisymmetric ? " (with u_r = 0 on the axis)" : ""));
+    bool traction = false, pressure = false;
+    for (const auto &l : surface_loads)
+      (l.parameters->type == BoundaryConditionType::pressure ? pressure : traction) = true;
+    if (traction)
+      e.push_back("surface tractions");
+    if (pressure)
+      e.push_back("pressures");
+    if (!point_forces.empty())
+      e.push_back("concentrated forces");
+    for (const auto &f : body_forces)
+      if (f)
+        {
+          e.push_back("body forces");
+          break;
+        }
+    if (symmetry_ids[0].size() + symmetry_ids[1].size() + symmetry_ids[2].size() > 0)
+      e.push_back("symmetry conditions");
+    if (exact)
+      e.push_back("manufactured solution (" + scene.manufactured_solution + ")");
+    return e;
+  }
+
+  template class Elasticity<2>;
+  template class Elasticity<3>;
+} // namespace glide

@@ -1,0 +1,490 @@
+#include <glide/mesh/mesh.h>
+#include <glide/scene/input_error.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/manifold_lib.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace glide
+{
+  using namespace dealii;
+
+  namespace
+  {
+    template <int dim>
+    Point<dim>
+    to_point(const std::vector<double> &v)
+    {
+      Point<dim> p;
+      for (unsigned int d = 0; d < dim && d < v.size(); ++d)
+        p[d] = v[d];
+      return p;
+    }
+
+    /// Re-set the boundary ids of a round shape from the geometry of each
+    /// boundary face: faces on the plane x_d = c_d get plane ids, faces on
+    /// the circle/sphere/cylinder of radius r get the ids in @p radii.
+    template <int dim>
+    void
+    label_round_boundary(Triangulation<dim> &                       tria,
+                         const Point<dim> &                         center,
+                         const std::vector<std::pair<double, types::boundary_id>> &radii,
+                         const std::vector<std::pair<unsigned int, types::boundary_id>> &planes,
+                         const double                               length,
+                         const bool                                 axis_is_z)
+    {
+      const double tol = 1e-6 * radii.back().first;
+      for (const auto &cell : tria.active_cell_iterators())
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary())
+            {
+              const Point<dim> p = face->center(/*respect_manifold=*/true);
+              Tensor<1, dim>   r = p - center;
+              bool             done = false;
+              if (dim == 3 && axis_is_z)
+                {
+                  if (std::abs(p[2] - center[2]) < tol)
+                    {
+                      face->set_boundary_id(10); // bottom
+                      continue;
+                    }
+                  if (std::abs(p[2] - center[2] - length) < tol)
+                    {
+                      face->set_boundary_id(11); // top
+                      continue;
+                    }
+                  r[2] = 0;
+                }
+              for (const auto &[d, id] : planes)
+                if (!done && std::abs(p[d] - center[d]) < tol)
+                  {
+                    face->set_boundary_id(id);
+                    done = true;
+                  }
+              for (const auto &[radius, id] : radii)
+                if (!done && std::abs(r.norm() - radius) < 1e-3 * radius)
+                  {
+                    face->set_boundary_id(id);
+                    done = true;
+                  }
+              Assert(done, ExcInternalError());
+            }
+    }
+
+    template <int dim>
+    void
+    set_curved_faces(Triangulation<dim> &tria,
+                     const std::set<types::boundary_id> &curved)
+    {
+      tria.set_all_manifold_ids(numbers::flat_manifold_id);
+      for (const auto &cell : tria.active_cell_iterators())
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary() && curved.count(face->boundary_id()))
+            face->set_all_manifold_ids(0);
+    }
+
+    /// Disk (2D) or its extrusion along z (3D); @p half keeps the lower
+    /// half (y <= center_y).
+    template <int dim>
+    void
+    make_cylinder(const MeshParameters &m, Triangulation<dim> &tria, const bool half)
+    {
+      const Point<dim> c = to_point<dim>(m.center);
+      Triangulation<2> disk;
+      const Point<2>   c2(c[0], c[1]);
+      if (half)
+        {
+          GridGenerator::half_hyper_ball(disk, Point<2>(), m.radius);
+          GridTools::rotate(-numbers::PI / 2, disk);
+          GridTools::shift(Tensor<1, 2>(c2), disk);
+        }
+      else
+        GridGenerator::hyper_ball(disk, c2, m.radius);
+      disk.set_all_manifold_ids(numbers::flat_manifold_id);
+
+      if constexpr (dim == 2)
+        tria.copy_triangulation(disk);
+      else
+        {
+          const unsigned int slices =
+            std::max(2u, static_cast<unsigned int>(std::round(m.length / m.radius)) + 1);
+          Triangulation<2> flat;
+          flat.copy_triangulation(disk);
+          GridGenerator::extrude_triangulation(flat, slices, m.length, tria);
+          Tensor<1, dim> shift;
+          shift[2] = c[2];
+          GridTools::shift(shift, tria);
+        }
+      // ids: 0 curved/outer, 1 flat (cut plane y = c_y), 10 bottom, 11 top
+      label_round_boundary<dim>(tria,
+                                c,
+                                {{m.radius, 0}},
+                                half ? std::vector<std::pair<unsigned int, types::boundary_id>>{{1, 1}} :
+                                       std::vector<std::pair<unsigned int, types::boundary_id>>{},
+                                m.length,
+                                true);
+      set_curved_faces(tria, {0});
+      if constexpr (dim == 2)
+        tria.set_manifold(0, SphericalManifold<2>(c));
+      else
+        {
+          Tensor<1, 3> axis;
+          axis[2] = 1.;
+          tria.set_manifold(0, CylindricalManifold<3>(axis, c));
+        }
+    }
+
+    /// Read the $PhysicalNames section of a Gmsh file: tag -> name for
+    /// groups of dimension @p face_dim.
+    std::map<types::boundary_id, std::string>
+    gmsh_physical_names(const std::string &file, const int face_dim)
+    {
+      std::map<types::boundary_id, std::string> names;
+      std::ifstream                             in(file);
+      std::string                               line;
+      while (std::getline(in, line))
+        if (line.rfind("$PhysicalNames", 0) == 0)
+          {
+            unsigned int n = 0;
+            in >> n;
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                int         d, tag;
+                std::string name;
+                in >> d >> tag >> name;
+                if (name.size() >= 2 && name.front() == '"')
+                  name = name.substr(1, name.size() - 2);
+                if (d == face_dim)
+                  names[tag] = name;
+              }
+            break;
+          }
+      return names;
+    }
+  } // namespace
+
+
+
+  template <int dim>
+  void
+  build_body_mesh(const MeshParameters &                     m,
+                  const std::string &                        body_name,
+                  Triangulation<dim> &                       tria,
+                  std::map<types::boundary_id, std::string> &names)
+  {
+    const Point<dim> c = to_point<dim>(m.center);
+    names.clear();
+    if (m.type == "block")
+      {
+        std::vector<unsigned int> reps(m.subdivisions.begin(),
+                                       m.subdivisions.begin() + dim);
+        GridGenerator::subdivided_hyper_rectangle(tria,
+                                                  reps,
+                                                  to_point<dim>(m.lower_corner),
+                                                  to_point<dim>(m.upper_corner),
+                                                  /*colorize=*/true);
+        const char *n[] = {"left", "right", "bottom", "top", "back", "front"};
+        for (unsigned int i = 0; i < 2 * dim; ++i)
+          names[i] = n[i];
+      }
+    else if (m.type == "cylinder" || m.type == "half cylinder" ||
+             m.type == "hertz")
+      {
+        const bool half = (m.type != "cylinder");
+        make_cylinder<dim>(m, tria, half);
+        names[0] = half ? "curved" : "outer";
+        if (half)
+          names[1] = "flat";
+        if (dim == 3)
+          {
+            names[10] = "bottom";
+            names[11] = "top";
+          }
+      }
+    else if (m.type == "ring")
+      {
+        if constexpr (dim == 2)
+          GridGenerator::hyper_shell(tria, c, m.inner_radius, m.radius);
+        else
+          {
+            GridGenerator::cylinder_shell(tria, m.length, m.inner_radius, m.radius);
+            GridTools::shift(Tensor<1, dim>(c), tria);
+          }
+        label_round_boundary<dim>(tria, c, {{m.inner_radius, 0}, {m.radius, 1}}, {}, m.length, true);
+        tria.set_all_manifold_ids(0);
+        if constexpr (dim == 2)
+          tria.set_manifold(0, SphericalManifold<2>(c));
+        else
+          {
+            Tensor<1, 3> axis;
+            axis[2] = 1.;
+            tria.set_manifold(0, CylindricalManifold<3>(axis, c));
+          }
+        names[0] = "inner";
+        names[1] = "outer";
+        if (dim == 3)
+          {
+            names[10] = "bottom";
+            names[11] = "top";
+          }
+      }
+    else if (m.type == "sphere octant")
+      {
+        GridGenerator::quarter_hyper_ball(tria, c, m.radius);
+        std::vector<std::pair<unsigned int, types::boundary_id>> planes;
+        for (unsigned int d = 0; d < dim; ++d)
+          planes.emplace_back(d, 1 + d);
+        label_round_boundary<dim>(tria, c, {{m.radius, 0}}, planes, 0., false);
+        set_curved_faces(tria, {0});
+        tria.set_manifold(0, SphericalManifold<dim>(c));
+        names[0] = "curved";
+        names[1] = "x0";
+        names[2] = "y0";
+        if (dim == 3)
+          names[3] = "z0";
+      }
+    else if (m.type == "file")
+      {
+        GridIn<dim> grid_in(tria);
+        std::ifstream in(m.file);
+        const bool msh = m.file.substr(m.file.size() - 4) == ".msh";
+        try
+          {
+            if (msh)
+              grid_in.read_msh(in);
+            else
+              grid_in.read_abaqus(in);
+          }
+        catch (const ExceptionBase &e)
+          {
+            std::ostringstream s;
+            e.print_info(s);
+            throw InputError("Body '" + body_name + "': cannot read the mesh file '" +
+                             m.file + "' as a " + std::to_string(dim) +
+                             "D mesh: " + s.str());
+          }
+        require(tria.n_active_cells() > 0,
+                "Body '" + body_name + "': the mesh file '" + m.file +
+                  "' has no cells.");
+        std::map<types::boundary_id, std::string> physical;
+        if (msh)
+          physical = gmsh_physical_names(m.file, dim - 1);
+        for (const auto id : tria.get_boundary_ids())
+          names[id] = physical.count(id) ? physical[id] : std::to_string(id);
+      }
+    else
+      throw InputError("Body '" + body_name + "': unknown mesh type '" + m.type + "'.");
+  }
+
+
+
+  template <int dim>
+  void
+  Mesh<dim>::build(const Scene &scene, parallel::distributed::Triangulation<dim> &tria)
+  {
+    std::vector<Point<dim>>    vertices;
+    std::vector<CellData<dim>> cells;
+    SubCellData                subcell;
+    types::boundary_id         next_id = 0;
+    std::map<types::manifold_id, std::unique_ptr<Manifold<dim>>> manifolds;
+
+    for (unsigned int b = 0; b < scene.bodies.size(); ++b)
+      {
+        const auto &body = scene.bodies[b];
+        Triangulation<dim>                        body_tria;
+        std::map<types::boundary_id, std::string> names;
+        build_body_mesh<dim>(body.mesh, body.name, body_tria, names);
+
+        std::map<types::boundary_id, types::boundary_id> new_id;
+        for (const auto &[id, n] : names)
+          {
+            new_id[id] = next_id;
+            surface_ids[body.name + "." + n].insert(next_id);
+            ++next_id;
+          }
+        const types::manifold_id manifold_offset = 10 * b;
+        for (const auto id : body_tria.get_manifold_ids())
+          if (id != numbers::flat_manifold_id)
+            manifolds[id + manifold_offset] = body_tria.get_manifold(id).clone();
+        auto manifold = [&](const types::manifold_id id) {
+          return id == numbers::flat_manifold_id ? id : id + manifold_offset;
+        };
+
+        const unsigned int offset = vertices.size();
+        std::vector<int>   new_vertex(body_tria.n_vertices(), -1);
+        for (unsigned int v = 0; v < body_tria.n_vertices(); ++v)
+          if (body_tria.get_used_vertices()[v])
+            {
+              new_vertex[v] = vertices.size();
+              vertices.push_back(body_tria.get_vertices()[v]);
+            }
+        (void)offset;
+        for (const auto &cell : body_tria.active_cell_iterators())
+          {
+            CellData<dim> data(cell->n_vertices());
+            for (unsigned int v = 0; v < cell->n_vertices(); ++v)
+              data.vertices[v] = new_vertex[cell->vertex_index(v)];
+            data.material_id = b;
+            data.manifold_id = manifold(cell->manifold_id());
+            cells.push_back(data);
+            for (const auto &face : cell->face_iterators())
+              {
+                const bool boundary = face->at_boundary();
+                if (!boundary && face->manifold_id() == numbers::flat_manifold_id)
+                  continue;
+                CellData<dim - 1> f(face->n_vertices());
+                for (unsigned int v = 0; v < face->n_vertices(); ++v)
+                  f.vertices[v] = new_vertex[face->vertex_index(v)];
+                f.boundary_id =
+                  boundary ? new_id.at(face->boundary_id()) : numbers::internal_face_boundary_id;
+                f.manifold_id = manifold(face->manifold_id());
+                if constexpr (dim == 2)
+                  subcell.boundary_lines.push_back(f);
+                else
+                  {
+                    subcell.boundary_quads.push_back(f);
+                    for (unsigned int l = 0; l < face->n_lines(); ++l)
+                      if (face->line(l)->manifold_id() != numbers::flat_manifold_id)
+                        {
+                          CellData<1> line(2);
+                          line.vertices[0] = new_vertex[face->line(l)->vertex_index(0)];
+                          line.vertices[1] = new_vertex[face->line(l)->vertex_index(1)];
+                          line.boundary_id = numbers::internal_face_boundary_id;
+                          line.manifold_id = manifold(face->line(l)->manifold_id());
+                          subcell.boundary_lines.push_back(line);
+                        }
+                  }
+              }
+          }
+      }
+
+    try
+      {
+        tria.create_triangulation(vertices, cells, subcell);
+      }
+    catch (const ExceptionBase &e)
+      {
+        std::ostringstream s;
+        e.print_info(s);
+        throw InputError("Cannot build the mesh of the scene: " + s.str() +
+                         " (check mesh files for inverted or distorted cells).");
+      }
+    for (const auto &[id, m] : manifolds)
+      tria.set_manifold(id, *m);
+
+    // Bounding box over all processes.
+    Point<dim> lo, hi;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        lo[d] = std::numeric_limits<double>::max();
+        hi[d] = -lo[d];
+      }
+    for (const auto &v : vertices)
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          lo[d] = std::min(lo[d], v[d]);
+          hi[d] = std::max(hi[d], v[d]);
+        }
+    size = lo.distance(hi);
+
+    // Per-body refinement: global, then towards a point.
+    for (unsigned int level = 0;; ++level)
+      {
+        bool any = false;
+        for (const auto &cell : tria.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              const auto &m = scene.bodies[cell->material_id()].mesh;
+              if (level < m.global_refinements)
+                {
+                  cell->set_refine_flag();
+                  any = true;
+                }
+            }
+        if (Utilities::MPI::max(any ? 1 : 0, tria.get_communicator()) == 0)
+          break;
+        tria.execute_coarsening_and_refinement();
+      }
+    for (unsigned int level = 0;; ++level)
+      {
+        bool any = false;
+        for (const auto &cell : tria.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              const auto &body = scene.bodies[cell->material_id()];
+              const auto &m    = body.mesh;
+              if (level >= m.local_refinements)
+                continue;
+              Point<dim> point;
+              if (!m.refinement_point.empty())
+                point = to_point<dim>(m.refinement_point);
+              else if (m.type == "hertz")
+                {
+                  point = to_point<dim>(m.center);
+                  point[1] -= m.radius;
+                }
+              else
+                point = to_point<dim>(m.type == "block" ? m.lower_corner : m.center);
+              if (m.refinement_point.empty() && m.type == "block")
+                for (unsigned int d = 0; d < dim; ++d)
+                  point[d] = 0.5 * (m.lower_corner[d] + m.upper_corner[d]);
+              const double r0 = m.refinement_radius > 0 ? m.refinement_radius : 0.25 * size;
+              const double r  = r0 / std::pow(2., level);
+              Point<dim> nearest = point;
+              if (dim == 3 && (m.type == "hertz" || m.type == "half cylinder"))
+                nearest[2] = cell->center()[2]; // refine along the line of contact
+              if (cell->center().distance(nearest) < r + 0.5 * cell->diameter())
+                {
+                  cell->set_refine_flag();
+                  any = true;
+                }
+            }
+        if (Utilities::MPI::max(any ? 1 : 0, tria.get_communicator()) == 0)
+          break;
+        tria.execute_coarsening_and_refinement();
+      }
+  }
+
+
+
+  template <int dim>
+  const std::set<types::boundary_id> &
+  Mesh<dim>::surface(const std::string &name, const std::string &parameter) const
+  {
+    const auto it = surface_ids.find(name);
+    require(it != surface_ids.end(),
+            "Parameter '" + parameter + "' = '" + name +
+              "': no such surface. The scene's surfaces are: " +
+              surface_list() + ".");
+    return it->second;
+  }
+
+  template <int dim>
+  bool
+  Mesh<dim>::has_surface(const std::string &name) const
+  {
+    return surface_ids.count(name) > 0;
+  }
+
+  template <int dim>
+  std::string
+  Mesh<dim>::surface_list() const
+  {
+    std::string list;
+    for (const auto &[n, ids] : surface_ids)
+      list += (list.empty() ? "" : ", ") + n;
+    return list;
+  }
+
+  template class Mesh<2>;
+  template class Mesh<3>;
+  template void
+  build_body_mesh<2>(const MeshParameters &, const std::string &, Triangulation<2> &, std::map<types::boundary_id, std::string> &);
+  template void
+  build_body_mesh<3>(const MeshParameters &, const std::string &, Triangulation<3> &, std::map<types::boundary_id, std::string> &);
+} // namespace glide

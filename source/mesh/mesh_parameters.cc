@@ -1,0 +1,207 @@
+#include <glide/mesh/mesh_parameters.h>
+#include <glide/scene/input_error.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <fstream>
+
+namespace glide
+{
+  using namespace dealii;
+
+  namespace
+  {
+    std::vector<double>
+    get_point(ParameterHandler &prm, const std::string &entry)
+    {
+      return Utilities::string_to_double(
+        Utilities::split_string_list(prm.get(entry)));
+    }
+
+    void
+    require_size(const std::vector<double> &v,
+                 const unsigned int         dim,
+                 const std::string &        path)
+    {
+      require(v.size() == dim,
+              "Parameter '" + path + "' needs " + std::to_string(dim) +
+                " comma-separated components in a " + std::to_string(dim) +
+                "D scene, but has " + std::to_string(v.size()) + ".");
+    }
+  } // namespace
+
+  std::string
+  MeshParameters::builder_names()
+  {
+    return "block|cylinder|half cylinder|hertz|ring|sphere octant|file";
+  }
+
+  void
+  MeshParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry(
+      "Mesh",
+      "block",
+      Patterns::Selection(builder_names()),
+      "How the body is meshed. block: box from 'Lower corner' to 'Upper "
+      "corner' (surfaces left, right, bottom, top, and in 3D back, front). "
+      "cylinder: disk (2D) or cylinder along z (3D) of 'Radius' around "
+      "'Center' (surface: outer; 3D also bottom, top). half cylinder: the "
+      "lower half of that disk/cylinder, flat side up (surfaces: curved, "
+      "flat). hertz: a half cylinder refined towards its lowest point, for "
+      "Hertz contact (same surfaces). ring: annulus/tube between 'Inner "
+      "radius' and 'Radius' (surfaces inner, outer). sphere octant: quarter "
+      "disk (2D; a sphere in an axisymmetric scene) or sphere octant (3D) "
+      "with x, y (, z) >= Center (surfaces: curved, x0, y0 (, z0)). file: "
+      "read 'Mesh file'.");
+    prm.declare_entry("Mesh file",
+                      "",
+                      Patterns::Anything(),
+                      "Gmsh .msh (physical groups of boundary faces become "
+                      "surfaces, named by $PhysicalNames or by number) or "
+                      "Abaqus .inp (surfaces become <body>.<number>). A "
+                      "relative path is taken relative to the scene file.");
+
+    prm.enter_subsection("Block");
+    prm.declare_entry("Lower corner",
+                      "0, 0",
+                      Patterns::List(Patterns::Double(), 2, 3),
+                      "Lower corner of the block (length units; 2 "
+                      "components in 2D, 3 in 3D).");
+    prm.declare_entry("Upper corner",
+                      "1, 1",
+                      Patterns::List(Patterns::Double(), 2, 3),
+                      "Upper corner of the block.");
+    prm.declare_entry("Subdivisions",
+                      "1, 1",
+                      Patterns::List(Patterns::Integer(1), 2, 3),
+                      "Number of cells in each direction before refinement.");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Round shapes");
+    prm.declare_entry("Center",
+                      "0, 0",
+                      Patterns::List(Patterns::Double(), 2, 3),
+                      "Center of the cylinder, half cylinder, ring or sphere "
+                      "octant (in 3D the cylinder axis is parallel to z and "
+                      "the center is on its lower end).");
+    prm.declare_entry("Radius",
+                      "1",
+                      Patterns::Double(0.),
+                      "Outer radius (length units, > 0).");
+    prm.declare_entry("Inner radius",
+                      "0.5",
+                      Patterns::Double(0.),
+                      "Inner radius of a ring (0 < inner < Radius).");
+    prm.declare_entry("Length",
+                      "1",
+                      Patterns::Double(0.),
+                      "Length along z of cylinders and rings in 3D.");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Refinement");
+    prm.declare_entry("Global refinements",
+                      "0",
+                      Patterns::Integer(0, 12),
+                      "Times every cell of this body is split in 2^dim.");
+    prm.declare_entry("Local refinements",
+                      "0",
+                      Patterns::Integer(0, 12),
+                      "Extra refinements towards 'Refinement point': at "
+                      "level k, cells within Refinement radius / 2^k of the "
+                      "point are refined (grading towards a contact).");
+    prm.declare_entry("Refinement point",
+                      "",
+                      Patterns::List(Patterns::Double(), 0, 3),
+                      "Point to refine towards. Empty: for 'hertz' the "
+                      "lowest point of the half cylinder, otherwise the "
+                      "center of the body's bounding box.");
+    prm.declare_entry("Refinement radius",
+                      "0",
+                      Patterns::Double(0.),
+                      "Radius of the first local refinement level (length "
+                      "units). 0: a quarter of the body's size.");
+    prm.leave_subsection();
+  }
+
+  void
+  MeshParameters::parse_parameters(ParameterHandler &prm,
+                                   const std::string &path,
+                                   const std::string &scene_directory)
+  {
+    type = prm.get("Mesh");
+    file = prm.get("Mesh file");
+    if (type == "file")
+      {
+        require(!file.empty(),
+                "Parameter '" + path +
+                  "/Mesh file' is empty, but 'Mesh = file'; give the path "
+                  "of a .msh or .inp file.");
+        if (file[0] != '/')
+          file = scene_directory + "/" + file;
+        std::ifstream in(file);
+        require(static_cast<bool>(in),
+                "Parameter '" + path + "/Mesh file': cannot open '" + file +
+                  "' (relative paths are taken relative to the scene "
+                  "file).");
+        const bool msh = file.size() > 4 && file.substr(file.size() - 4) == ".msh";
+        const bool inp = file.size() > 4 && file.substr(file.size() - 4) == ".inp";
+        require(msh || inp,
+                "Parameter '" + path + "/Mesh file' = '" + file +
+                  "': only Gmsh '.msh' and Abaqus '.inp' files are read.");
+      }
+
+    prm.enter_subsection("Block");
+    lower_corner = get_point(prm, "Lower corner");
+    upper_corner = get_point(prm, "Upper corner");
+    subdivisions.clear();
+    for (const auto &s :
+         Utilities::split_string_list(prm.get("Subdivisions")))
+      subdivisions.push_back(Utilities::string_to_int(s));
+    prm.leave_subsection();
+
+    prm.enter_subsection("Round shapes");
+    center       = get_point(prm, "Center");
+    radius       = prm.get_double("Radius");
+    inner_radius = prm.get_double("Inner radius");
+    length       = prm.get_double("Length");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Refinement");
+    global_refinements = prm.get_integer("Global refinements");
+    local_refinements  = prm.get_integer("Local refinements");
+    refinement_point   = get_point(prm, "Refinement point");
+    refinement_radius  = prm.get_double("Refinement radius");
+    prm.leave_subsection();
+
+    require(radius > 0., "Parameter '" + path + "/Round shapes/Radius' must be > 0.");
+    if (type == "ring")
+      require(inner_radius > 0. && inner_radius < radius,
+              "Parameter '" + path +
+                "/Round shapes/Inner radius' must satisfy 0 < Inner radius "
+                "< Radius.");
+  }
+
+  void
+  MeshParameters::check_sizes(const unsigned int dim,
+                              const std::string &path) const
+  {
+    const MeshParameters &m = *this;
+    require_size(m.lower_corner, dim, path + "/Block/Lower corner");
+    require_size(m.upper_corner, dim, path + "/Block/Upper corner");
+    require(m.subdivisions.size() == dim,
+            "Parameter '" + path + "/Block/Subdivisions' needs " +
+              std::to_string(dim) + " components.");
+    for (unsigned int d = 0; d < dim; ++d)
+      require(m.upper_corner[d] > m.lower_corner[d],
+              "Parameters '" + path +
+                "/Block/Lower corner' and 'Upper corner': every component "
+                "of the upper corner must be larger than that of the lower "
+                "corner.");
+    require_size(m.center, dim, path + "/Round shapes/Center");
+    if (!m.refinement_point.empty())
+      require_size(m.refinement_point,
+                   dim,
+                   path + "/Refinement/Refinement point");
+  }
+} // namespace glide

@@ -1,0 +1,38 @@
+#include <glide/output/output_parameters.h>
+
+namespace glide
+{
+  using namespace dealii;
+
+  void
+  OutputParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    prm.declare_entry("Directory",
+                      "output",
+                      Patterns::DirectoryName(),
+                      "Results go to <Directory>/<Scene name>/: "
+                      "<name>-NNNN.vtu per output step, <name>.pvd, "
+                      "statistics.csv. Relative to the current directory.");
+    prm.declare_entry("Write VTU",
+                      "true",
+                      Patterns::Bool(),
+                      "false: write only the statistics table (studies).");
+    prm.declare_entry("Every n steps",
+                      "1",
+                      Patterns::Integer(1),
+                      "Write VTU every n-th converged load step (the last "
+                      "step is always written).");
+    prm.leave_subsection();
+  }
+
+  void
+  OutputParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    directory = prm.get("Directory");
+    write_vtu = prm.get_bool("Write VTU");
+    every     = prm.get_integer("Every n steps");
+    prm.leave_subsection();
+  }
+} // namespace glide

@@ -1,0 +1,170 @@
+#include <glide/output/vtu_writer.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_postprocessor.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+namespace glide
+{
+  using namespace dealii;
+
+  namespace
+  {
+    /// Strain, stress and von Mises stress from the displacement field,
+    /// with each body's own law.
+    template <int dim>
+    class StressPostprocessor : public DataPostprocessor<dim>
+    {
+    public:
+      explicit StressPostprocessor(const Elasticity<dim> &elasticity)
+        : elasticity(elasticity)
+        , axisymmetric(elasticity.get_scene().analysis == AnalysisType::axisymmetric)
+      {
+        for (unsigned int b = 0; b < elasticity.get_scene().bodies.size(); ++b)
+          laws.push_back(elasticity.material(b));
+      }
+
+      std::vector<std::string>
+      get_names() const override
+      {
+        std::vector<std::string> n(dim * dim, "strain");
+        n.insert(n.end(), dim * dim, "stress");
+        if (dim == 2)
+          {
+            n.push_back(axisymmetric ? "strain_hoop" : "strain_zz");
+            n.push_back(axisymmetric ? "stress_hoop" : "stress_zz");
+          }
+        n.push_back("von_Mises");
+        return n;
+      }
+
+      std::vector<DataComponentInterpretation::DataComponentInterpretation>
+      get_data_component_interpretation() const override
+      {
+        std::vector<DataComponentInterpretation::DataComponentInterpretation> i(
+          2 * dim * dim, DataComponentInterpretation::component_is_part_of_tensor);
+        i.insert(i.end(), dim == 2 ? 3 : 1, DataComponentInterpretation::component_is_scalar);
+        return i;
+      }
+
+      UpdateFlags
+      get_needed_update_flags() const override
+      {
+        return update_values | update_gradients | update_quadrature_points;
+      }
+
+      void
+      evaluate_vector_field(const DataPostprocessorInputs::Vector<dim> &inputs,
+                            std::vector<Vector<double>> &computed) const override
+      {
+        const auto cell = inputs.template get_cell<dim>();
+        Material & law  = *laws[cell->material_id()];
+        for (unsigned int q = 0; q < computed.size(); ++q)
+          {
+            Tensor2 H;
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = 0; j < dim; ++j)
+                H[i][j] = inputs.solution_gradients[q][i][j];
+            if (dim == 2 && axisymmetric)
+              {
+                const double r = inputs.evaluation_points[q][0];
+                H[2][2]        = r > 0 ? inputs.solution_values[q][0] / r : H[0][0];
+              }
+            Tensor2 P;
+            law.evaluate(H, P);
+            const Tensor2 sigma = law.cauchy_stress();
+            // Small strain, or Green-Lagrange strain at finite strain.
+            Tensor2 E = 0.5 * (H + transpose(H));
+            if (law.finite_strain())
+              E += 0.5 * transpose(H) * H;
+            unsigned int k = 0;
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = 0; j < dim; ++j)
+                computed[q](k++) = E[i][j];
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = 0; j < dim; ++j)
+                computed[q](k++) = sigma[i][j];
+            if (dim == 2)
+              {
+                computed[q](k++) = E[2][2];
+                computed[q](k++) = sigma[2][2];
+              }
+            const Tensor2 dev = sigma - (trace(sigma) / 3.) * unit_symmetric_tensor<3>();
+            computed[q](k++)  = std::sqrt(1.5 * scalar_product(dev, dev));
+          }
+      }
+
+    private:
+      const Elasticity<dim> &                 elasticity;
+      const bool                              axisymmetric;
+      mutable std::vector<std::unique_ptr<Material>> laws;
+    };
+  } // namespace
+
+  template <int dim>
+  VtuWriter<dim>::VtuWriter(const Elasticity<dim> &elasticity,
+                            const std::string &    directory,
+                            const std::string &    name)
+    : elasticity(elasticity)
+    , directory(directory)
+    , name(name)
+  {}
+
+  template <int dim>
+  void
+  VtuWriter<dim>::write(const unsigned int step, const double time, const VectorType &U)
+  {
+    const auto &dof_handler = elasticity.get_dof_handler();
+    const auto  comm        = elasticity.get_triangulation().get_communicator();
+    VectorType  U_ghost(elasticity.locally_owned(), elasticity.locally_relevant(), comm);
+    U_ghost = U;
+
+    DataOut<dim> data_out;
+    data_out.attach_dof_handler(dof_handler);
+    data_out.add_data_vector(U_ghost,
+                             std::vector<std::string>(dim, "displacement"),
+                             DataOut<dim>::type_dof_data,
+                             std::vector<DataComponentInterpretation::DataComponentInterpretation>(
+                               dim, DataComponentInterpretation::component_is_part_of_vector));
+    StressPostprocessor<dim> stress(elasticity);
+    data_out.add_data_vector(U_ghost, stress);
+    const auto &tria = elasticity.get_triangulation();
+    Vector<float> material(tria.n_active_cells()), subdomain(tria.n_active_cells());
+    for (const auto &cell : tria.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          material(cell->active_cell_index())  = cell->material_id();
+          subdomain(cell->active_cell_index()) = cell->subdomain_id();
+        }
+    data_out.add_data_vector(material, "material_id");
+    data_out.add_data_vector(subdomain, "subdomain");
+    const unsigned int degree = elasticity.get_scene().degree;
+    data_out.build_patches(elasticity.get_mapping(), degree, DataOut<dim>::curved_inner_cells);
+
+    char number[16];
+    std::snprintf(number, sizeof(number), "%04u", step);
+    const std::string file = name + "-" + number + ".vtu";
+    const std::string path = directory + "/" + file;
+    data_out.write_vtu_in_parallel(path + ".tmp", comm);
+    MPI_Barrier(comm);
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      {
+        std::filesystem::rename(path + ".tmp", path);
+        records.emplace_back(time, file);
+        const std::string pvd = directory + "/" + name + ".pvd";
+        {
+          std::ofstream out(pvd + ".tmp");
+          DataOutBase::write_pvd_record(out, records);
+        }
+        std::filesystem::rename(pvd + ".tmp", pvd);
+      }
+    MPI_Barrier(comm);
+  }
+
+  template class VtuWriter<2>;
+  template class VtuWriter<3>;
+} // namespace glide

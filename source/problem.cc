@@ -1,0 +1,210 @@
+#include <glide/mechanics/elasticity.h>
+#include <glide/output/statistics.h>
+#include <glide/output/vtu_writer.h>
+#include <glide/problem.h>
+#include <glide/scene/input_error.h>
+#include <glide/solver/linear_solver.h>
+#include <glide/solver/nonlinear_solver.h>
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/base/utilities.h>
+
+#include <sys/resource.h>
+
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace glide
+{
+  using namespace dealii;
+
+  namespace
+  {
+    /// Peak resident memory of this process in MiB, summed over processes.
+    double
+    peak_memory_mib(MPI_Comm comm)
+    {
+      rusage usage;
+      getrusage(RUSAGE_SELF, &usage);
+      return Utilities::MPI::sum(usage.ru_maxrss / 1024., comm);
+    }
+
+    std::string
+    scientific(const double x, const int digits = 3)
+    {
+      std::ostringstream s;
+      s << std::scientific << std::setprecision(digits) << x;
+      return s.str();
+    }
+  } // namespace
+
+  template <int dim>
+  void
+  run_scene(const Scene &scene, MPI_Comm comm)
+  {
+    ConditionalOStream pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0);
+    TimerOutput        timer(comm, pcout, TimerOutput::never, TimerOutput::wall_times);
+    Timer              wall(comm);
+
+    Elasticity<dim> elasticity(scene, comm, timer);
+    elasticity.setup(); // every input check happens here, before output
+
+    const auto  &dof_handler = elasticity.get_dof_handler();
+    LinearSolver linear_solver(scene.linear_solver, comm);
+    linear_solver.choose(dim, dof_handler.n_dofs());
+
+    pcout << "glide: scene '" << scene.name << "' (" << scene.file << ")\n"
+          << "  analysis:       " << scene.analysis_name() << ", " << dim << "D, degree " << scene.degree
+          << (scene.geometric_nonlinearity ? ", geometrically nonlinear" : ", geometrically linear") << "\n"
+          << "  bodies:         " << scene.bodies.size() << ", "
+          << elasticity.get_triangulation().n_global_active_cells() << " cells, " << dof_handler.n_dofs()
+          << " DoFs on " << Utilities::MPI::n_mpi_processes(comm) << " process(es)\n"
+          << "  surfaces:       " << elasticity.get_mesh().surface_list() << "\n"
+          << "  linear solver:  " << linear_solver.description() << "\n"
+          << "  active effects: ";
+    const auto effects = elasticity.active_effects();
+    for (unsigned int i = 0; i < effects.size(); ++i)
+      pcout << (i ? "; " : "") << effects[i];
+    pcout << std::endl;
+
+    // Output goes to <directory>/<scene name>/; only now, after all checks.
+    const std::string directory = scene.output.directory + "/" + scene.name;
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      {
+        std::filesystem::create_directories(directory);
+        for (const auto &entry : std::filesystem::directory_iterator(directory))
+          {
+            const std::string f = entry.path().filename().string();
+            if ((f.rfind(scene.name + "-", 0) == 0 &&
+                 (f.find(".vtu") != std::string::npos)) ||
+                f == scene.name + ".pvd" || f == "statistics.csv" || f == "timings.csv")
+              std::filesystem::remove(entry.path());
+          }
+      }
+    MPI_Barrier(comm);
+    Statistics     statistics(directory + "/statistics.csv", comm);
+    VtuWriter<dim> vtu(elasticity, directory, scene.name);
+
+    MatrixType jacobian;
+    jacobian.reinit(elasticity.matrix_pattern());
+    std::vector<VectorType> modes;
+    if (linear_solver.choose(dim, dof_handler.n_dofs()) == "amg")
+      modes = elasticity.rigid_body_modes();
+
+    const auto &owned = elasticity.locally_owned();
+    VectorType  U(owned, comm);
+    double      t = 0.;
+    NonlinearSolver::Callbacks callbacks;
+    callbacks.reinit_vector = [&](VectorType &v) { v.reinit(owned, comm); };
+    callbacks.residual      = [&](const VectorType &u, VectorType &F) { elasticity.residual(u, t, F); };
+    callbacks.setup_jacobian = [&](const VectorType &u) {
+      elasticity.jacobian(u, jacobian);
+      TimerOutput::Scope s(timer, "linear solver: setup");
+      linear_solver.initialize(jacobian, modes);
+    };
+    callbacks.solve_jacobian = [&](const VectorType &rhs, VectorType &dx) {
+      TimerOutput::Scope s(timer, "linear solver: solve");
+      const unsigned int n = linear_solver.solve(rhs, dx, scene.linear_solver.relative_tolerance);
+      elasticity.update_constraints().distribute(dx);
+      return n;
+    };
+    callbacks.report = [&](const unsigned int k, const double r) {
+      pcout << "    iteration " << std::setw(2) << k << ": scaled residual " << scientific(r) << std::endl;
+    };
+    NonlinearSolver newton(scene.nonlinear_solver, comm);
+
+    const double nominal = 1. / scene.load_stepping.number_of_steps;
+    double       dt      = nominal;
+    unsigned int step = 0, cut_backs = 0;
+    while (t < 1. - 1e-12)
+      {
+        const double t_old = t;
+        t                  = std::min(1., t + dt);
+        if (1. - t < 1e-3 * dt)
+          t = 1.;
+        VectorType U_trial = U;
+        elasticity.constraints_at(t).distribute(U_trial);
+        pcout << "Step " << step + 1 << ": load factor " << t << " (increment " << t - t_old << ")" << std::endl;
+        Timer      step_timer(comm);
+        const auto result =
+          newton.solve(U_trial, callbacks, elasticity.residual_scale(), 1. / elasticity.length_scale());
+        if (!result.converged)
+          {
+            pcout << "  step failed: " << result.message << std::endl;
+            t = t_old;
+            if (cut_backs >= scene.load_stepping.maximum_cut_backs)
+              throw std::runtime_error("load step " + std::to_string(step + 1) + " failed after " +
+                                       std::to_string(cut_backs) + " cut-backs: " + result.message);
+            ++cut_backs;
+            dt *= scene.load_stepping.cut_back_factor;
+            pcout << "  cutting back: new increment " << dt << " (cut-back " << cut_backs << " of at most "
+                  << scene.load_stepping.maximum_cut_backs << ")" << std::endl;
+            continue;
+          }
+        U = U_trial;
+        ++step;
+        pcout << "  converged in " << result.iterations << " iteration(s), scaled residual "
+              << scientific(result.residual_norm) << std::endl;
+
+        std::vector<std::pair<std::string, std::string>> row{
+          {"step", std::to_string(step)},
+          {"load_factor", format_number(t)},
+          {"kinsol_iterations", std::to_string(result.iterations)},
+          {"linear_iterations", std::to_string(result.linear_iterations)},
+          {"residual", format_number(result.residual_norm)},
+          {"cut_backs", std::to_string(cut_backs)},
+          {"wall_time", format_number(step_timer.wall_time())},
+          {"dofs", std::to_string(dof_handler.n_dofs())}};
+        {
+          TimerOutput::Scope s(timer, "postprocessing");
+          const char *axis[] = {"x", "y", "z"};
+          for (const auto &[surface, force] : elasticity.reactions(U, t))
+            for (unsigned int d = 0; d < dim; ++d)
+              row.emplace_back("reaction_" + surface + "_" + axis[d], format_number(force[d]));
+          if (scene.manufactured_solution != "none")
+            {
+              const auto [l2, h1] = elasticity.errors(U);
+              row.emplace_back("l2_error", format_number(l2));
+              row.emplace_back("h1_error", format_number(h1));
+            }
+        }
+        statistics.add_row(row);
+        if (scene.output.write_vtu && (step % scene.output.every == 0 || t >= 1.))
+          {
+            TimerOutput::Scope s(timer, "output");
+            vtu.write(step, t, U);
+          }
+        // After a cut-back, grow the increment again towards the nominal one.
+        dt = std::min(nominal, 2 * dt);
+      }
+
+    timer.print_summary();
+    const double memory = peak_memory_mib(comm);
+    pcout << "Finished " << step << " load step(s) with " << cut_backs << " cut-back(s) in "
+          << std::fixed << std::setprecision(2) << wall.wall_time() << " s; peak memory " << memory
+          << " MiB" << std::endl;
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      {
+        std::ofstream out(directory + "/timings.csv");
+        out << "quantity,value\n"
+            << "dofs," << dof_handler.n_dofs() << "\n"
+            << "processes," << Utilities::MPI::n_mpi_processes(comm) << "\n"
+            << "linear_solver," << linear_solver.description() << "\n"
+            << "total_wall_time," << wall.wall_time() << "\n"
+            << "peak_memory_mib," << memory << "\n";
+        for (const auto &[section, time] : timer.get_summary_data(TimerOutput::total_wall_time))
+          out << "time:" << section << "," << time << "\n";
+        for (const auto &[section, n] : timer.get_summary_data(TimerOutput::n_calls))
+          out << "calls:" << section << "," << n << "\n";
+      }
+  }
+
+  template void
+  run_scene<2>(const Scene &, MPI_Comm);
+  template void
+  run_scene<3>(const Scene &, MPI_Comm);
+} // namespace glide

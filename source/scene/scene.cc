@@ -1,0 +1,463 @@
+#include <glide/scene/input_error.h>
+#include <glide/scene/scene.h>
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace glide
+{
+  using namespace dealii;
+
+  namespace
+  {
+    /// Turn a deal.II exception from ParameterHandler into a message for
+    /// people: only its explanation, not the source location in deal.II.
+    std::string
+    explain(const ExceptionBase &e)
+    {
+      std::ostringstream s;
+      e.print_info(s);
+      std::string text = s.str();
+      while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
+        text.pop_back();
+      return text;
+    }
+
+    std::vector<std::string>
+    split_names(const std::string &list)
+    {
+      std::vector<std::string> names;
+      for (const auto &n : Utilities::split_string_list(list, ','))
+        if (!n.empty())
+          names.push_back(n);
+      return names;
+    }
+
+    void
+    check_names(const std::vector<std::string> &names,
+                const std::string &             parameter)
+    {
+      std::set<std::string> seen;
+      for (const auto &n : names)
+        {
+          require(std::all_of(n.begin(),
+                              n.end(),
+                              [](const char c) {
+                                return std::isalnum(static_cast<unsigned char>(c)) ||
+                                       c == '_' || c == '-';
+                              }),
+                  "Parameter '" + parameter + "': the name '" + n +
+                    "' may contain only letters, digits, '_' and '-'.");
+          require(seen.insert(n).second,
+                  "Parameter '" + parameter + "': the name '" + n +
+                    "' appears twice; names must be unique.");
+        }
+    }
+
+    const std::vector<std::string> example_bodies{"body"};
+    const std::vector<std::string> example_conditions{"example"};
+    const std::vector<std::string> example_node_sets{"example"};
+  } // namespace
+
+
+
+  void
+  Scene::declare_parameters(ParameterHandler &              prm,
+                            const std::vector<std::string> &bodies,
+                            const std::vector<std::string> &conditions,
+                            const std::vector<std::string> &node_sets)
+  {
+    prm.declare_entry("Scene name",
+                      "",
+                      Patterns::Anything(),
+                      "Name of the scene; results go to "
+                      "<Output/Directory>/<Scene name>/. Empty: the scene "
+                      "file's name without extension.");
+    prm.declare_entry("Dimension",
+                      "2",
+                      Patterns::Integer(2, 3),
+                      "Space dimension: 2 for plane strain and "
+                      "axisymmetric analysis, 3 for 3D.");
+    prm.declare_entry("Analysis type",
+                      "plane strain",
+                      Patterns::Selection("plane strain|axisymmetric|3d"),
+                      "plane strain (2D, per unit thickness), axisymmetric "
+                      "(2D, x = radius r >= 0, y = axial z; forces and "
+                      "reactions are totals over the full 360 degrees), or "
+                      "3d.");
+
+    prm.enter_subsection("Discretization");
+    prm.declare_entry("Element degree",
+                      "1",
+                      Patterns::Integer(1, 2),
+                      "Polynomial degree of the Lagrange elements (FE_Q): 1 "
+                      "or 2.");
+    prm.declare_entry("Geometric nonlinearity",
+                      "false",
+                      Patterns::Bool(),
+                      "false: small strain, linear elastic bodies. true: "
+                      "finite strain, compressible neo-Hookean bodies "
+                      "(large displacements and rotations).");
+    prm.leave_subsection();
+
+    prm.declare_entry("Bodies",
+                      "body",
+                      Patterns::List(Patterns::Anything(), 1),
+                      "Comma-separated names of the bodies; each name gets "
+                      "a subsection 'Body <name>'. Surfaces are then named "
+                      "<body>.<surface>.");
+    prm.declare_entry("Boundary conditions",
+                      "",
+                      Patterns::List(Patterns::Anything()),
+                      "Comma-separated names of boundary conditions; each "
+                      "name gets a subsection 'Boundary condition <name>'.");
+    prm.declare_entry("Node sets",
+                      "",
+                      Patterns::List(Patterns::Anything()),
+                      "Comma-separated names of node sets defined by points; "
+                      "each name gets a subsection 'Node set <name>'. Every "
+                      "surface is also a node set under its own name.");
+
+    for (const auto &b : bodies)
+      {
+        prm.enter_subsection("Body " + b);
+        MeshParameters::declare_parameters(prm);
+        MaterialParameters::declare_parameters(prm);
+        prm.declare_entry("Body force",
+                          "",
+                          Patterns::Anything(),
+                          "Body force per unit reference volume as "
+                          "';'-separated components in x, y, (z,) t, e.g. "
+                          "'0; -9.81*7850*t'. Empty: none.");
+        prm.leave_subsection();
+      }
+    for (const auto &c : conditions)
+      {
+        prm.enter_subsection("Boundary condition " + c);
+        BoundaryConditionParameters::declare_parameters(prm);
+        prm.leave_subsection();
+      }
+    for (const auto &n : node_sets)
+      {
+        prm.enter_subsection("Node set " + n);
+        NodeSetParameters::declare_parameters(prm);
+        prm.leave_subsection();
+      }
+
+    prm.enter_subsection("Verification");
+    prm.declare_entry(
+      "Manufactured solution",
+      "none",
+      Patterns::Selection("none|trigonometric"),
+      "none, or a manufactured solution for convergence studies "
+      "(geometrically linear scenes only): glide then sets the body force "
+      "and the prescribed displacements of every 'displacement' boundary "
+      "condition from the exact solution and writes L2 and H1 errors into "
+      "the statistics table.");
+    prm.leave_subsection();
+
+    NonlinearSolverParameters::declare_parameters(prm);
+    LinearSolverParameters::declare_parameters(prm);
+    LoadSteppingParameters::declare_parameters(prm);
+    OutputParameters::declare_parameters(prm);
+  }
+
+
+
+  void
+  Scene::parse_parameters(ParameterHandler &prm)
+  {
+    if (name.empty())
+      name = prm.get("Scene name");
+    dimension = prm.get_integer("Dimension");
+    const std::string a = prm.get("Analysis type");
+    analysis = (a == "plane strain" ? AnalysisType::plane_strain :
+                a == "axisymmetric" ? AnalysisType::axisymmetric :
+                                      AnalysisType::three_dimensional);
+    require(!(analysis == AnalysisType::three_dimensional && dimension != 3),
+            "Scene '" + file +
+              "': 'Analysis type = 3d' needs 'Dimension = 3'.");
+    require(!(analysis != AnalysisType::three_dimensional && dimension == 3),
+            "Scene '" + file + "': 'Analysis type = " + a +
+              "' is a 2D analysis and cannot be combined with 'Dimension = "
+              "3'; use 'Analysis type = 3d' or 'Dimension = 2'.");
+
+    prm.enter_subsection("Discretization");
+    degree                 = prm.get_integer("Element degree");
+    geometric_nonlinearity = prm.get_bool("Geometric nonlinearity");
+    prm.leave_subsection();
+
+    for (auto &body : bodies)
+      {
+        const std::string path = "Body " + body.name;
+        prm.enter_subsection(path);
+        body.mesh.parse_parameters(prm, path, directory);
+        body.material.parse_parameters(prm, path);
+        body.body_force = prm.get("Body force");
+        prm.leave_subsection();
+      }
+    for (auto &bc : boundary_conditions)
+      {
+        prm.enter_subsection("Boundary condition " + bc.name);
+        bc.parse_parameters(prm, bc.name, dimension);
+        prm.leave_subsection();
+      }
+    for (auto &ns : node_sets)
+      {
+        prm.enter_subsection("Node set " + ns.name);
+        ns.parse_parameters(prm, ns.name, dimension);
+        prm.leave_subsection();
+      }
+
+    prm.enter_subsection("Verification");
+    manufactured_solution = prm.get("Manufactured solution");
+    prm.leave_subsection();
+
+    nonlinear_solver.parse_parameters(prm);
+    linear_solver.parse_parameters(prm);
+    load_stepping.parse_parameters(prm);
+    output.parse_parameters(prm);
+  }
+
+
+
+  void
+  Scene::check() const
+  {
+    std::set<std::string> body_names;
+    for (const auto &b : bodies)
+      body_names.insert(b.name);
+    std::set<std::string> node_set_names;
+    for (const auto &n : node_sets)
+      node_set_names.insert(n.name);
+
+    for (const auto &bc : boundary_conditions)
+      {
+        const std::string path = "Boundary condition " + bc.name + "/Surface";
+        require(!bc.surface.empty(),
+                "Parameter '" + path +
+                  "' is empty; name a surface as <body>.<surface>, e.g. "
+                  "'block.bottom'.");
+        if (bc.type == BoundaryConditionType::force &&
+            node_set_names.count(bc.surface) > 0)
+          continue;
+        const auto dot = bc.surface.find('.');
+        require(dot != std::string::npos,
+                "Parameter '" + path + "' = '" + bc.surface +
+                  "' is not of the form <body>.<surface> (or the name of a "
+                  "node set, for concentrated forces).");
+        require(body_names.count(bc.surface.substr(0, dot)) > 0,
+                "Parameter '" + path + "' = '" + bc.surface +
+                  "' names the body '" + bc.surface.substr(0, dot) +
+                  "', but the scene has no such body (see 'Bodies').");
+        require(!(bc.type == BoundaryConditionType::zsymm && dimension == 2),
+                "Boundary condition '" + bc.name +
+                  "': ZSYMM needs a 3D scene; in 2D use XSYMM or YSYMM.");
+      }
+
+    require(!(manufactured_solution != "none" && geometric_nonlinearity),
+            "Parameter 'Verification/Manufactured solution' needs a "
+            "geometrically linear scene ('Discretization/Geometric "
+            "nonlinearity = false').");
+
+    for (const auto &b : bodies)
+      {
+        b.mesh.check_sizes(dimension, "Body " + b.name);
+        if (analysis == AnalysisType::axisymmetric &&
+            b.mesh.type != "file")
+          {
+            // The axisymmetric meridian plane is x = r >= 0.
+            const bool centered_shape = (b.mesh.type != "block");
+            if (centered_shape)
+              require(b.mesh.center[0] - (b.mesh.type == "sphere octant" ?
+                                            0. :
+                                            b.mesh.radius) >=
+                        -1e-12 * b.mesh.radius,
+                      "Body '" + b.name +
+                        "': in an axisymmetric scene the mesh must lie in "
+                        "x = r >= 0; move 'Center' or use 'sphere octant' "
+                        "for a solid of revolution touching the axis.");
+            else
+              require(b.mesh.lower_corner[0] >= 0.,
+                      "Body '" + b.name +
+                        "': in an axisymmetric scene the block must lie in "
+                        "x = r >= 0; change 'Block/Lower corner'.");
+          }
+      }
+  }
+
+
+
+  Scene
+  Scene::read(const std::string &             filename,
+              const std::vector<std::string> &overrides)
+  {
+    Scene scene;
+    scene.file = filename;
+    {
+      std::ifstream in(filename);
+      require(static_cast<bool>(in),
+              "Cannot open the scene file '" + filename +
+                "': check the path (it is taken relative to the current "
+                "directory).");
+    }
+    const auto slash = filename.rfind('/');
+    scene.directory =
+      (slash == std::string::npos ? std::string(".") :
+                                    filename.substr(0, slash));
+    std::string stem =
+      (slash == std::string::npos ? filename : filename.substr(slash + 1));
+    if (const auto d = stem.rfind('.'); d != std::string::npos)
+      stem = stem.substr(0, d);
+
+    auto apply_overrides = [&](ParameterHandler &prm, const bool lenient) {
+      for (const auto &o : overrides)
+        {
+          const auto eq = o.find('=');
+          require(eq != std::string::npos,
+                  "Command-line option --set '" + o +
+                    "' is not of the form \"Subsection/Entry=value\".");
+          const auto path  = Utilities::split_string_list(o.substr(0, eq), '/');
+          const auto value = Utilities::trim(o.substr(eq + 1));
+          try
+            {
+              for (unsigned int i = 0; i + 1 < path.size(); ++i)
+                prm.enter_subsection(path[i]);
+              prm.set(path.back(), value);
+              for (unsigned int i = 0; i + 1 < path.size(); ++i)
+                prm.leave_subsection();
+            }
+          catch (const ExceptionBase &e)
+            {
+              if (lenient)
+                {
+                  // Names declared only in the second pass.
+                  for (unsigned int i = 0; i + 1 < path.size(); ++i)
+                    try
+                      {
+                        prm.leave_subsection();
+                      }
+                    catch (...)
+                      {}
+                  continue;
+                }
+              throw InputError("Command-line option --set '" + o +
+                               "': " + explain(e) +
+                               " Run 'glide --print-parameters' to see "
+                               "every valid parameter.");
+            }
+        }
+    };
+
+    // Pass 1: the lists of names only; everything else is skipped.
+    std::vector<std::string> bodies, conditions, node_sets;
+    try
+      {
+        ParameterHandler prm;
+        declare_parameters(prm, {}, {}, {});
+        prm.parse_input(filename, "", true);
+        apply_overrides(prm, true);
+        bodies     = split_names(prm.get("Bodies"));
+        conditions = split_names(prm.get("Boundary conditions"));
+        node_sets  = split_names(prm.get("Node sets"));
+      }
+    catch (const ExceptionBase &e)
+      {
+        throw InputError("In scene file '" + filename + "': " + explain(e));
+      }
+    check_names(bodies, "Bodies");
+    check_names(conditions, "Boundary conditions");
+    check_names(node_sets, "Node sets");
+    require(!bodies.empty(),
+            "Scene '" + filename + "': 'Bodies' must name at least one body.");
+
+    // Pass 2: strict, with one subsection per name.
+    ParameterHandler prm;
+    declare_parameters(prm, bodies, conditions, node_sets);
+    try
+      {
+        prm.parse_input(filename);
+      }
+    catch (const ExceptionBase &e)
+      {
+        throw InputError("In scene file '" + filename + "': " + explain(e) +
+                         " Run 'glide --print-parameters' to see every "
+                         "valid parameter.");
+      }
+    apply_overrides(prm, false);
+
+    for (const auto &b : bodies)
+      scene.bodies.push_back(BodyParameters{b, {}, {}, {}});
+    for (const auto &c : conditions)
+      {
+        scene.boundary_conditions.emplace_back();
+        scene.boundary_conditions.back().name = c;
+      }
+    for (const auto &n : node_sets)
+      {
+        scene.node_sets.emplace_back();
+        scene.node_sets.back().name = n;
+      }
+    try
+      {
+        scene.parse_parameters(prm);
+      }
+    catch (const ExceptionBase &e)
+      {
+        throw InputError("In scene file '" + filename + "': " + explain(e));
+      }
+    catch (const InputError &e)
+      {
+        throw InputError("In scene file '" + filename + "': " + e.what());
+      }
+    if (scene.name.empty())
+      scene.name = stem;
+    try
+      {
+        scene.check();
+      }
+    catch (const InputError &e)
+      {
+        throw InputError("In scene file '" + filename + "': " + e.what());
+      }
+    return scene;
+  }
+
+
+
+  void
+  Scene::print_parameters(std::ostream &out, const std::string &format)
+  {
+    ParameterHandler prm;
+    declare_parameters(prm,
+                       example_bodies,
+                       example_conditions,
+                       example_node_sets);
+    const auto style =
+      (format == "json" ? ParameterHandler::JSON :
+       format == "xml"  ? ParameterHandler::XML :
+                          ParameterHandler::PRM);
+    prm.print_parameters(out, style | ParameterHandler::KeepDeclarationOrder);
+  }
+
+
+
+  std::string
+  Scene::analysis_name() const
+  {
+    switch (analysis)
+      {
+        case AnalysisType::plane_strain:
+          return "plane strain";
+        case AnalysisType::axisymmetric:
+          return "axisymmetric";
+        default:
+          return "3d";
+      }
+  }
+} // namespace glide

@@ -1,0 +1,134 @@
+#include <glide/solver/nonlinear_solver.h>
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/sundials/kinsol.h>
+
+#include <sstream>
+
+namespace glide
+{
+  using namespace dealii;
+
+  NonlinearSolver::NonlinearSolver(const NonlinearSolverParameters &parameters, MPI_Comm comm)
+    : parameters(parameters)
+    , comm(comm)
+  {}
+
+  NonlinearSolver::Result
+  NonlinearSolver::solve(VectorType &     U,
+                         const Callbacks &cb,
+                         const double     residual_scale,
+                         const double     solution_scale)
+  {
+    using KINSOL = SUNDIALS::KINSOL<VectorType>;
+    typename KINSOL::AdditionalData data(
+      parameters.strategy == "newton" ? KINSOL::AdditionalData::newton : KINSOL::AdditionalData::linesearch,
+      parameters.maximum_iterations,
+      parameters.tolerance,
+      /*step_tolerance=*/1e-14,
+      /*no_init_setup=*/false,
+      parameters.maximum_setup_calls);
+    KINSOL kinsol(data, comm);
+
+    Result      result;
+    std::string failure; // set by a callback that failed
+    VectorType  f_scale, u_scale;
+    cb.reinit_vector(f_scale);
+    cb.reinit_vector(u_scale);
+    f_scale = residual_scale;
+    u_scale = solution_scale;
+
+    // Exceptions must not cross KINSOL's C code: callbacks catch them and
+    // return KINSOL's "recoverable" (1) or "fatal" (-1) codes instead.
+    kinsol.reinit_vector = cb.reinit_vector;
+    kinsol.residual      = [&](const VectorType &u, VectorType &F) -> int {
+      try
+        {
+          cb.residual(u, F);
+          return 0;
+        }
+      catch (const std::exception &e)
+        {
+          failure = e.what();
+          return 1;
+        }
+    };
+    kinsol.setup_jacobian = [&](const VectorType &u, const VectorType &F) -> int {
+      try
+        {
+          cb.report(result.iterations, F.linfty_norm() * residual_scale);
+          ++result.iterations;
+          cb.setup_jacobian(u);
+          return 0;
+        }
+      catch (const std::exception &e)
+        {
+          failure = e.what();
+          return -1;
+        }
+    };
+    kinsol.solve_with_jacobian = [&](const VectorType &rhs, VectorType &dst, const double) -> int {
+      try
+        {
+          result.linear_iterations += cb.solve_jacobian(rhs, dst);
+          return 0;
+        }
+      catch (const std::exception &e)
+        {
+          failure = e.what();
+          return -1;
+        }
+    };
+    kinsol.get_function_scaling = [&]() -> VectorType & { return f_scale; };
+    kinsol.get_solution_scaling = [&]() -> VectorType & { return u_scale; };
+
+    VectorType guess = U;
+    try
+      {
+        kinsol.solve(U);
+      }
+    catch (const ExceptionBase &e)
+      {
+        // Debug builds of deal.II throw on a KINSOL failure.
+        std::ostringstream s;
+        e.print_info(s);
+        if (failure.empty())
+          failure = s.str();
+      }
+
+    // Explicit convergence check (release builds do not report failure).
+    VectorType F;
+    cb.reinit_vector(F);
+    try
+      {
+        cb.residual(U, F);
+        result.residual_norm = F.linfty_norm() * residual_scale;
+      }
+    catch (const std::exception &e)
+      {
+        result.residual_norm = std::numeric_limits<double>::infinity();
+        if (failure.empty())
+          failure = e.what();
+      }
+    result.converged = std::isfinite(result.residual_norm) &&
+                       result.residual_norm <= parameters.tolerance;
+    if (!result.converged)
+      {
+        std::ostringstream s;
+        if (!failure.empty())
+          s << failure;
+        else if (result.iterations >= parameters.maximum_iterations)
+          s << "no convergence in " << parameters.maximum_iterations
+            << " Newton iterations (scaled residual " << result.residual_norm << " > tolerance "
+            << parameters.tolerance << ")";
+        else
+          s << "KINSOL stopped with scaled residual " << result.residual_norm << " > tolerance "
+            << parameters.tolerance << " (line search or step tolerance)";
+        result.message = s.str();
+        U              = guess;
+      }
+    else if (result.iterations == 0)
+      cb.report(0, result.residual_norm);
+    return result;
+  }
+} // namespace glide

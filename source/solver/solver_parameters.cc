@@ -1,0 +1,126 @@
+#include <glide/scene/input_error.h>
+#include <glide/solver/solver_parameters.h>
+
+namespace glide
+{
+  using namespace dealii;
+
+  void
+  NonlinearSolverParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Nonlinear solver");
+    prm.declare_entry("Strategy",
+                      "line search",
+                      Patterns::Selection("newton|line search"),
+                      "KINSOL strategy: 'newton' takes full Newton steps, "
+                      "'line search' backtracks when the residual grows.");
+    prm.declare_entry("Tolerance",
+                      "1e-10",
+                      Patterns::Double(0.),
+                      "Convergence when the max-norm of the residual, "
+                      "scaled by 1/(E_max A_ref) with A_ref the mean "
+                      "boundary-face measure, is below this. Unit-free: the "
+                      "same value works in SI and in mm-N-MPa. 1e-8 to 1e-12 "
+                      "are sensible.");
+    prm.declare_entry("Maximum iterations",
+                      "25",
+                      Patterns::Integer(1, 1000),
+                      "Newton iterations per load step before the step is "
+                      "cut back.");
+    prm.declare_entry("Maximum setup calls",
+                      "1",
+                      Patterns::Integer(1, 100),
+                      "Newton iterations between Jacobian assemblies (1: "
+                      "assemble every iteration, the safe choice).");
+    prm.leave_subsection();
+  }
+
+  void
+  NonlinearSolverParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Nonlinear solver");
+    strategy            = prm.get("Strategy");
+    tolerance           = prm.get_double("Tolerance");
+    maximum_iterations  = prm.get_integer("Maximum iterations");
+    maximum_setup_calls = prm.get_integer("Maximum setup calls");
+    prm.leave_subsection();
+    require(tolerance > 0.,
+            "Parameter 'Nonlinear solver/Tolerance' must be > 0.");
+  }
+
+  void
+  LinearSolverParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Linear solver");
+    prm.declare_entry("Type",
+                      "automatic",
+                      Patterns::Selection("automatic|direct|amg"),
+                      "direct: sparse LU (see 'Direct solver'). amg: GMRES "
+                      "preconditioned by Trilinos ML algebraic multigrid "
+                      "with rigid-body modes, for large 3D problems. "
+                      "automatic: direct in 2D and for 3D problems up to "
+                      "'Automatic direct limit' DoFs, amg above.");
+    prm.declare_entry("Direct solver",
+                      "MUMPS",
+                      Patterns::Selection("MUMPS|KLU"),
+                      "Amesos direct solver: MUMPS (fast, parallel) or KLU.");
+    prm.declare_entry("Automatic direct limit",
+                      "200000",
+                      Patterns::Integer(0),
+                      "With 'Type = automatic', 3D problems with more DoFs "
+                      "than this use amg.");
+    prm.declare_entry("Relative tolerance",
+                      "1e-8",
+                      Patterns::Double(0., 1.),
+                      "Relative residual reduction of the Krylov solver; "
+                      "KINSOL may ask for a looser one.");
+    prm.declare_entry("Maximum iterations",
+                      "2000",
+                      Patterns::Integer(1),
+                      "Krylov iterations before the linear solve fails.");
+    prm.leave_subsection();
+  }
+
+  void
+  LinearSolverParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Linear solver");
+    type                   = prm.get("Type");
+    direct_solver          = prm.get("Direct solver");
+    automatic_direct_limit = prm.get_integer("Automatic direct limit");
+    relative_tolerance     = prm.get_double("Relative tolerance");
+    maximum_iterations     = prm.get_integer("Maximum iterations");
+    prm.leave_subsection();
+  }
+
+  void
+  LoadSteppingParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Load stepping");
+    prm.declare_entry("Number of steps",
+                      "1",
+                      Patterns::Integer(1, 100000),
+                      "Equal load steps from t = 0 to t = 1; t is the "
+                      "variable of every boundary-condition function.");
+    prm.declare_entry("Maximum cut-backs",
+                      "6",
+                      Patterns::Integer(0, 30),
+                      "How often a failed step may be cut back and retried "
+                      "before the run stops.");
+    prm.declare_entry("Cut-back factor",
+                      "0.5",
+                      Patterns::Double(0.01, 0.9),
+                      "Factor applied to the step size after a failure.");
+    prm.leave_subsection();
+  }
+
+  void
+  LoadSteppingParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Load stepping");
+    number_of_steps   = prm.get_integer("Number of steps");
+    maximum_cut_backs = prm.get_integer("Maximum cut-backs");
+    cut_back_factor   = prm.get_double("Cut-back factor");
+    prm.leave_subsection();
+  }
+} // namespace glide
