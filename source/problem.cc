@@ -53,7 +53,10 @@ namespace glide
     Elasticity<dim> elasticity(scene, comm, timer);
     elasticity.setup(); // every input check happens here, before output
 
-    const auto  &dof_handler = elasticity.get_dof_handler();
+    const auto &dof_handler = elasticity.get_dof_handler();
+    // The Jacobian outlives the linear solver: Amesos keeps a pointer to it.
+    MatrixType jacobian;
+    jacobian.reinit(elasticity.matrix_pattern());
     LinearSolver linear_solver(scene.linear_solver, comm);
     linear_solver.choose(dim, dof_handler.n_dofs());
 
@@ -89,8 +92,6 @@ namespace glide
     Statistics     statistics(directory + "/statistics.csv", comm);
     VtuWriter<dim> vtu(elasticity, directory, scene.name);
 
-    MatrixType jacobian;
-    jacobian.reinit(elasticity.matrix_pattern());
     std::vector<VectorType> modes;
     if (linear_solver.choose(dim, dof_handler.n_dofs()) == "amg")
       modes = elasticity.rigid_body_modes();

@@ -36,9 +36,10 @@ namespace glide
     prm.declare_entry("Surface",
                       "",
                       Patterns::Anything(),
-                      "Where the condition acts: a surface <body>.<surface> "
-                      "(e.g. block.bottom), or for 'force' also the name of "
-                      "a node set.");
+                      "Where the condition acts: one or more comma-separated "
+                      "surfaces <body>.<surface> (e.g. 'block.bottom, "
+                      "block.left'), or for 'force' also the name of a node "
+                      "set. Reactions are reported per boundary condition.");
     prm.declare_entry(
       "Type",
       "fixed",

@@ -139,7 +139,9 @@ namespace glide
                 tol    = node_sets[bc.surface]->tolerance;
               }
             else
-              ids = mesh.surface(bc.surface, path + "/Surface");
+              for (const auto &name : Utilities::split_string_list(bc.surface, ','))
+                for (const auto id : mesh.surface(name, path + "/Surface"))
+                  ids.insert(id);
             std::set<types::global_dof_index> seen;
             std::vector<unsigned int>         found(points.size(), 0);
             for (const auto &cell : dof_handler.active_cell_iterators())
@@ -194,7 +196,9 @@ namespace glide
 
         Load load;
         load.parameters = &bc;
-        load.ids        = mesh.surface(bc.surface, path + "/Surface");
+        for (const auto &name : Utilities::split_string_list(bc.surface, ','))
+          for (const auto id : mesh.surface(name, path + "/Surface"))
+            load.ids.insert(id);
         if (bc.type == BoundaryConditionType::displacement && !exact)
           load.function = parse_function(bc.function, dim, path + "/Function");
         if (bc.type == BoundaryConditionType::traction)
@@ -399,7 +403,8 @@ namespace glide
                     double v = 0;
                     for (unsigned int j = 0; j < dim; ++j)
                       v += P[c][j] * dphi[j];
-                    v += P[2][2] * hoop;
+                    if (dim == 2)
+                      v += P[2][2] * hoop;
                     cell_rhs(k) += (v - b[c] * phi) * w;
                   }
                 if (J)
@@ -407,7 +412,8 @@ namespace glide
                     G[k] = 0;
                     for (unsigned int j = 0; j < dim; ++j)
                       G[k][c][j] = dphi[j];
-                    G[k][2][2] = hoop;
+                    if (dim == 2)
+                      G[k][2][2] = hoop;
                   }
               }
             if (J)
@@ -422,7 +428,8 @@ namespace glide
                         double v = 0;
                         for (unsigned int j = 0; j < dim; ++j)
                           v += AG[l][c][j] * G[k][c][j];
-                        v += AG[l][2][2] * G[k][2][2];
+                        if (dim == 2)
+                          v += AG[l][2][2] * G[k][2][2];
                         cell_matrix(k, l) += v * w;
                       }
                   }
@@ -503,9 +510,7 @@ namespace glide
     std::map<std::string, Tensor<1, dim>> result;
     for (const auto &d : dirichlet)
       {
-        const std::string &name = d.parameters->surface;
-        if (result.count(name))
-          continue;
+        const std::string &name = d.parameters->name;
         IndexSet       dofs;
         DoFTools::extract_boundary_dofs(dof_handler, ComponentMask(), dofs, d.ids);
         Tensor<1, dim> sum;

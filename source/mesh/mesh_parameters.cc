@@ -4,6 +4,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <fstream>
+#include <map>
 
 namespace glide
 {
@@ -11,11 +12,25 @@ namespace glide
 
   namespace
   {
+    const std::map<std::string, std::string> default_of{{"Lower corner", "0, 0"},
+                                                        {"Upper corner", "1, 1"},
+                                                        {"Subdivisions", "1, 1"},
+                                                        {"Center", "0, 0"}};
+
+    /// Read a point; a 2D default left untouched in a 3D scene gets its
+    /// third component from @p fill, so 3D scenes need not repeat defaults
+    /// of shapes they do not use.
     std::vector<double>
-    get_point(ParameterHandler &prm, const std::string &entry)
+    get_point(ParameterHandler & prm,
+              const std::string &entry,
+              const unsigned int dim,
+              const double       fill)
     {
-      return Utilities::string_to_double(
+      auto v = Utilities::string_to_double(
         Utilities::split_string_list(prm.get(entry)));
+      if (dim == 3 && v.size() == 2 && prm.get(entry) == default_of.at(entry))
+        v.push_back(fill);
+      return v;
     }
 
     void
@@ -127,7 +142,8 @@ namespace glide
   void
   MeshParameters::parse_parameters(ParameterHandler &prm,
                                    const std::string &path,
-                                   const std::string &scene_directory)
+                                   const std::string &scene_directory,
+                                   const unsigned int dim)
   {
     type = prm.get("Mesh");
     file = prm.get("Mesh file");
@@ -152,16 +168,18 @@ namespace glide
       }
 
     prm.enter_subsection("Block");
-    lower_corner = get_point(prm, "Lower corner");
-    upper_corner = get_point(prm, "Upper corner");
+    lower_corner = get_point(prm, "Lower corner", dim, 0.);
+    upper_corner = get_point(prm, "Upper corner", dim, 1.);
     subdivisions.clear();
-    for (const auto &s :
-         Utilities::split_string_list(prm.get("Subdivisions")))
+    for (const auto &s : Utilities::split_string_list(prm.get("Subdivisions")))
       subdivisions.push_back(Utilities::string_to_int(s));
+    if (dim == 3 && subdivisions.size() == 2 &&
+        prm.get("Subdivisions") == default_of.at("Subdivisions"))
+      subdivisions.push_back(1);
     prm.leave_subsection();
 
     prm.enter_subsection("Round shapes");
-    center       = get_point(prm, "Center");
+    center       = get_point(prm, "Center", dim, 0.);
     radius       = prm.get_double("Radius");
     inner_radius = prm.get_double("Inner radius");
     length       = prm.get_double("Length");
@@ -170,7 +188,7 @@ namespace glide
     prm.enter_subsection("Refinement");
     global_refinements = prm.get_integer("Global refinements");
     local_refinements  = prm.get_integer("Local refinements");
-    refinement_point   = get_point(prm, "Refinement point");
+    refinement_point   = get_point(prm, "Refinement point", dim, 0.);
     refinement_radius  = prm.get_double("Refinement radius");
     prm.leave_subsection();
 

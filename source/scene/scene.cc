@@ -196,7 +196,7 @@ namespace glide
       {
         const std::string path = "Body " + body.name;
         prm.enter_subsection(path);
-        body.mesh.parse_parameters(prm, path, directory);
+        body.mesh.parse_parameters(prm, path, directory, dimension);
         body.material.parse_parameters(prm, path);
         body.body_force = prm.get("Body force");
         prm.leave_subsection();
@@ -246,15 +246,18 @@ namespace glide
         if (bc.type == BoundaryConditionType::force &&
             node_set_names.count(bc.surface) > 0)
           continue;
-        const auto dot = bc.surface.find('.');
-        require(dot != std::string::npos,
-                "Parameter '" + path + "' = '" + bc.surface +
-                  "' is not of the form <body>.<surface> (or the name of a "
-                  "node set, for concentrated forces).");
-        require(body_names.count(bc.surface.substr(0, dot)) > 0,
-                "Parameter '" + path + "' = '" + bc.surface +
-                  "' names the body '" + bc.surface.substr(0, dot) +
-                  "', but the scene has no such body (see 'Bodies').");
+        for (const auto &surface : Utilities::split_string_list(bc.surface, ','))
+          {
+            const auto dot = surface.find('.');
+            require(dot != std::string::npos,
+                    "Parameter '" + path + "' = '" + surface +
+                      "' is not of the form <body>.<surface> (or the name of "
+                      "a node set, for concentrated forces).");
+            require(body_names.count(surface.substr(0, dot)) > 0,
+                    "Parameter '" + path + "' = '" + surface +
+                      "' names the body '" + surface.substr(0, dot) +
+                      "', but the scene has no such body (see 'Bodies').");
+          }
         require(!(bc.type == BoundaryConditionType::zsymm && dimension == 2),
                 "Boundary condition '" + bc.name +
                   "': ZSYMM needs a 3D scene; in 2D use XSYMM or YSYMM.");

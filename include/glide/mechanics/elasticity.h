@@ -66,8 +66,8 @@ namespace glide
     void
     jacobian(const VectorType &U, MatrixType &J) const;
 
-    /// Total reaction force on each surface that carries a Dirichlet
-    /// condition: the unconstrained residual summed over its DoFs.
+    /// Total reaction force of each Dirichlet boundary condition (by its
+    /// name): the unconstrained residual summed over its surfaces' DoFs.
     std::map<std::string, dealii::Tensor<1, dim>>
     reactions(const VectorType &U, const double t) const;
 
