@@ -239,6 +239,22 @@ namespace glide
   }
 
   template <int dim>
+  ComponentMask
+  Elasticity<dim>::component_mask(const BoundaryConditionParameters &bc) const
+  {
+    ComponentMask mask(dim, true);
+    if (bc.is_symmetry())
+      {
+        mask = ComponentMask(dim, false);
+        mask.set(bc.symmetry_component(), true);
+      }
+    else if (bc.type == BoundaryConditionType::displacement)
+      for (unsigned int i = 0; i < dim; ++i)
+        mask.set(i, bc.components[i]);
+    return mask;
+  }
+
+  template <int dim>
   AffineConstraints<double>
   Elasticity<dim>::constraints_at(const double t) const
   {
@@ -247,16 +263,8 @@ namespace glide
     DoFTools::make_hanging_node_constraints(dof_handler, c);
     for (const auto &d : dirichlet)
       {
-        const auto &bc = *d.parameters;
-        ComponentMask mask(dim, true);
-        if (bc.is_symmetry())
-          {
-            mask = ComponentMask(dim, false);
-            mask.set(bc.symmetry_component(), true);
-          }
-        else if (bc.type == BoundaryConditionType::displacement)
-          for (unsigned int i = 0; i < dim; ++i)
-            mask.set(i, bc.components[i]);
+        const auto &        bc   = *d.parameters;
+        const ComponentMask mask = component_mask(bc);
         std::map<types::boundary_id, const Function<dim> *> functions;
         Functions::ZeroFunction<dim> zero(dim);
         const Function<dim> *f = &zero;
@@ -511,12 +519,13 @@ namespace glide
     for (const auto &d : dirichlet)
       {
         const std::string &name = d.parameters->name;
-        IndexSet       dofs;
-        DoFTools::extract_boundary_dofs(dof_handler, ComponentMask(), dofs, d.ids);
-        Tensor<1, dim> sum;
+        // Only the components this condition constrains.
+        const ComponentMask mask = component_mask(*d.parameters);
+        IndexSet            dofs;
+        DoFTools::extract_boundary_dofs(dof_handler, mask, dofs, d.ids);
+        Tensor<1, dim>                       sum;
         std::vector<types::global_dof_index> local_dofs(fe.n_dofs_per_cell());
-        // Component of each DoF: walk the cells once.
-        std::set<types::global_dof_index> counted;
+        std::set<types::global_dof_index>    counted;
         for (const auto &cell : dof_handler.active_cell_iterators())
           if (cell->is_locally_owned())
             {

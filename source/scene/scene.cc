@@ -22,9 +22,12 @@ namespace glide
     {
       std::ostringstream s;
       e.print_info(s);
-      std::string text = s.str();
-      while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
-        text.pop_back();
+      // deal.II formats its messages over several indented lines; make
+      // them one line.
+      std::string text, word;
+      std::istringstream in(s.str());
+      while (in >> word)
+        text += (text.empty() ? "" : " ") + word;
       return text;
     }
 

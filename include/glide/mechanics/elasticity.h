@@ -10,6 +10,7 @@
 #include <deal.II/base/timer.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/component_mask.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/lac/affine_constraints.h>
@@ -67,7 +68,8 @@ namespace glide
     jacobian(const VectorType &U, MatrixType &J) const;
 
     /// Total reaction force of each Dirichlet boundary condition (by its
-    /// name): the unconstrained residual summed over its surfaces' DoFs.
+    /// name): the unconstrained residual summed over the DoFs it
+    /// constrains (a DoF shared by two conditions counts for both).
     std::map<std::string, dealii::Tensor<1, dim>>
     reactions(const VectorType &U, const double t) const;
 
@@ -175,6 +177,10 @@ namespace glide
 
     void
     assemble(const VectorType &U, const double t, VectorType *F, MatrixType *J, const bool condense) const;
+
+    /// The displacement components a Dirichlet condition prescribes.
+    dealii::ComponentMask
+    component_mask(const BoundaryConditionParameters &bc) const;
 
     std::unique_ptr<dealii::FunctionParser<dim>>
     parse_function(const std::string &expression, const unsigned int n_components, const std::string &parameter) const;

@@ -1,0 +1,321 @@
+#!/usr/bin/env python3
+"""Scene tests: run glide on small scenes and check the statistics table it
+writes (house style 12: compare text, never pictures). Each case states what
+it checks and why the expected answer is right. Usage:
+    scene_tests.py --glide PATH --case NAME [--mpirun CMD]
+"""
+import argparse
+import csv
+import math
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+ARGS = None
+failures = []
+
+
+def check(condition, message):
+    print(("ok:   " if condition else "FAIL: ") + message)
+    if not condition:
+        failures.append(message)
+
+
+def close(a, b, rel, what):
+    check(abs(a - b) <= rel * max(abs(b), 1e-300), f"{what}: {a:.10g} vs {b:.10g} (rel. tol. {rel})")
+
+
+def run(scene, *sets, name=None, expect_status=0, mpi=False, output=None):
+    """Run glide; return (statistics rows, log text, output directory)."""
+    output = output or tempfile.mkdtemp(prefix="glide-scene-")
+    name = name or os.path.splitext(os.path.basename(scene))[0]
+    cmd = [ARGS.glide, scene, "--set", f"Output/Directory={output}", "--set", f"Scene name={name}"]
+    for s in sets:
+        cmd += ["--set", s]
+    if mpi:
+        cmd = ARGS.mpirun.split() + cmd
+    p = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+    log = p.stdout + p.stderr
+    if p.returncode != expect_status:
+        print(log)
+        sys.exit(f"glide exited with {p.returncode}, expected {expect_status}: {' '.join(cmd)}")
+    rows = []
+    stats = os.path.join(output, name, "statistics.csv")
+    if os.path.exists(stats):
+        with open(stats) as f:
+            rows = [{k: (float(v) if re.match(r"^[-+0-9.eE]+$", v) else v) for k, v in r.items()}
+                    for r in csv.DictReader(f)]
+    return rows, log, os.path.join(output, name)
+
+
+def scene(name):
+    return os.path.join(HERE, name)
+
+
+# --------------------------------------------------------------------------
+def case_traction_balance():
+    """P1.5: a traction (1, -5) on the top (length 2) of a block fixed at the
+    bottom: the bottom reaction must be -(2, -10) = (-2, 10) by global
+    equilibrium, at every load factor (t = 0.5 and 1)."""
+    rows, _, _ = run(scene("block.prm"), "Load stepping/Number of steps=2")
+    check(len(rows) == 2, "two load steps")
+    for r in rows:
+        t = r["load_factor"]
+        close(r["reaction_bottom_x"], -2 * t, 1e-9, f"R_x at t={t}")
+        close(r["reaction_bottom_y"], 10 * t, 1e-9, f"R_y at t={t}")
+        check(r["kinsol_iterations"] == 1, "a linear scene converges in one Newton iteration")
+
+
+def case_pressure_balance_axisymmetric():
+    """P1.1/P1.5: an axisymmetric solid cylinder (r in [0, 2], including the
+    axis) under pressure p = 3 on its top: the total axial reaction at the
+    bottom is p * pi * R^2 = 12 pi (forces are totals over 360 degrees). The
+    radial reaction of a full ring is zero by symmetry."""
+    rows, _, _ = run(scene("block.prm"), "Analysis type=axisymmetric", "Boundary condition load/Type=pressure",
+                     "Boundary condition load/Function=3*t", "Discretization/Element degree=2")
+    close(rows[-1]["reaction_bottom_y"], 3 * math.pi * 4, 1e-9, "axial reaction = p pi R^2")
+
+
+def case_body_force_and_symmetry():
+    """P1.5: gravity-like body force b = (0, -2) in a block [0,2]x[0,1] that
+    rests on YSYMM at the bottom and XSYMM on the left: the vertical
+    reaction of the YSYMM condition equals the weight 2 * area = 4, and the
+    horizontal reactions of the XSYMM condition (on u_x only) sum to zero,
+    since nothing else acts horizontally."""
+    rows, _, _ = run(scene("block.prm"), "Boundary condition bottom/Type=YSYMM",
+                     "Boundary condition load/Surface=block.left", "Boundary condition load/Type=XSYMM",
+                     "Body block/Body force=0; -2*t")
+    close(rows[-1]["reaction_bottom_y"], 4.0, 1e-9, "YSYMM reaction = weight")
+    check(abs(rows[-1]["reaction_load_x"]) < 1e-9, "XSYMM horizontal reactions sum to zero")
+    check(rows[-1]["reaction_load_y"] == 0, "XSYMM constrains no vertical component")
+
+
+def case_concentrated_force():
+    """P1.5: a concentrated force (0, -7) on a node set of two vertices of
+    the top surface (each node gets the force, as Abaqus CLOAD does): the
+    bottom reaction is 2 * 7 = 14. Also on a 3D block with a force on the
+    four corner nodes of the top: reaction 4 * 7 = 28."""
+    rows, _, _ = run(scene("block.prm"), "Node sets=tips", "Node set tips/Points=0, 1; 2, 1",
+                     "Boundary condition load/Surface=tips", "Boundary condition load/Type=force",
+                     "Boundary condition load/Function=0; -7*t")
+    close(rows[-1]["reaction_bottom_y"], 14.0, 1e-9, "reaction balances two nodal forces")
+    rows, _, _ = run(scene("block.prm"), "Dimension=3", "Analysis type=3d",
+                     "Body block/Block/Lower corner=0, 0, 0", "Body block/Block/Upper corner=2, 1, 1",
+                     "Body block/Block/Subdivisions=2, 1, 1", "Node sets=corners",
+                     "Node set corners/Points=0, 1, 0; 2, 1, 0; 0, 1, 1; 2, 1, 1",
+                     "Boundary condition load/Surface=corners", "Boundary condition load/Type=force",
+                     "Boundary condition load/Function=0; -7*t; 0")
+    close(rows[-1]["reaction_bottom_y"], 28.0, 1e-9, "3D reaction balances four nodal forces")
+
+
+def neo_hookean_uniaxial(lam1, E, nu, plane_strain):
+    """Closed form: homogeneous uniaxial stretch lam1 along x of a
+    compressible neo-Hookean block, traction-free laterally. Solve
+    P_22 = mu lam2 + (lambda ln J - mu) / lam2 = 0 for the lateral stretch
+    lam2 (J = lam1 lam2 in plane strain, lam1 lam2^2 in 3D) by Newton, then
+    P_11 = mu lam1 + (lambda ln J - mu) / lam1."""
+    mu = E / (2 * (1 + nu))
+    lam = E * nu / ((1 + nu) * (1 - 2 * nu))
+    l2 = 1.0
+    for _ in range(100):
+        J = lam1 * l2 if plane_strain else lam1 * l2 * l2
+        dlnJ = 1 / l2 if plane_strain else 2 / l2
+        f = mu * l2 + (lam * math.log(J) - mu) / l2
+        df = mu + lam * dlnJ / l2 - (lam * math.log(J) - mu) / l2 ** 2
+        l2 -= f / df
+    J = lam1 * l2 if plane_strain else lam1 * l2 * l2
+    return mu * lam1 + (lam * math.log(J) - mu) / lam1, l2
+
+
+def case_neo_hookean_uniaxial():
+    """P1.2: finite-strain check with an exact solution. A block [0,1]^dim
+    with XSYMM on the left, YSYMM on the bottom (ZSYMM at the back in 3D) is
+    stretched by 30 % along x (prescribed u_x = 0.3 on the right) in 3 load
+    steps. The deformation is homogeneous, so the reaction on the right face
+    equals P_11 times the reference area, from the closed form (to solver
+    tolerance, on any mesh)."""
+    for dim in (2, 3):
+        E, nu, stretch = 10.0, 0.3, 1.3
+        sets = ["Discretization/Geometric nonlinearity=true", "Load stepping/Number of steps=3",
+                "Body block/Material/Young's modulus=10",
+                "Body block/Block/Upper corner=" + ("1, 1" if dim == 2 else "1, 1, 1"),
+                "Body block/Block/Subdivisions=" + ("3, 2" if dim == 2 else "2, 2, 2"),
+                "Boundary conditions=bottom, load, left" + (", back" if dim == 3 else ""),
+                "Boundary condition bottom/Type=YSYMM", "Boundary condition load/Surface=block.right",
+                "Boundary condition load/Type=displacement", "Boundary condition load/Components=x",
+                "Boundary condition load/Function=0.3*t; 0" + ("; 0" if dim == 3 else "")]
+        text = open(scene("block.prm")).read()
+        extra = "subsection Boundary condition left\n set Surface = block.left\n set Type = XSYMM\nend\n"
+        if dim == 3:
+            extra += "subsection Boundary condition back\n set Surface = block.back\n set Type = ZSYMM\nend\n"
+            text = text.replace("set Dimension     = 2", "set Dimension = 3").replace(
+                "set Analysis type = plane strain", "set Analysis type = 3d")
+            text = text.replace("set Lower corner = 0, 0", "set Lower corner = 0, 0, 0")
+            text = text.replace("set Function = t; -5*t", "set Function = 0; 0; 0")
+        tmp = tempfile.mkdtemp(prefix="glide-nh-")
+        path = os.path.join(tmp, f"uniaxial{dim}d.prm")
+        open(path, "w").write(text + extra)
+        rows, _, _ = run(path, *sets)
+        P11, l2 = neo_hookean_uniaxial(stretch, E, nu, dim == 2)
+        close(rows[-1]["reaction_load_x"], P11, 1e-8, f"{dim}D reaction = P_11 * area (lateral stretch {l2:.6f})")
+        check(all(r["kinsol_iterations"] <= 8 for r in rows), f"{dim}D: at most 8 Newton iterations per step")
+        check(rows[-1]["kinsol_iterations"] >= 2, f"{dim}D: a nonlinear step needs more than one iteration")
+
+
+def case_units_do_not_change_iterations():
+    """P3.1: the same geometrically nonlinear scene in SI (m, Pa, N) and in
+    mm-N-MPa must converge in the same number of Newton iterations in every
+    step (the residual scaling makes the tolerance unit-free); the reaction
+    forces agree after conversion (plane strain: N/m in SI equals
+    1e-3 N/mm)."""
+    common = ["Discretization/Geometric nonlinearity=true", "Load stepping/Number of steps=3"]
+    si, _, _ = run(scene("block.prm"), *common, "Body block/Block/Upper corner=0.2, 0.1",
+                   "Body block/Material/Young's modulus=2e11", "Boundary condition load/Function=0; -2e9*t",
+                   name="si")
+    mm, _, _ = run(scene("block.prm"), *common, "Body block/Block/Upper corner=200, 100",
+                   "Body block/Material/Young's modulus=2e5", "Boundary condition load/Function=0; -2e3*t",
+                   name="mm")
+    check([r["kinsol_iterations"] for r in si] == [r["kinsol_iterations"] for r in mm],
+          f"iterations SI {[r['kinsol_iterations'] for r in si]} == mm {[r['kinsol_iterations'] for r in mm]}")
+    check(max(r["kinsol_iterations"] for r in si) >= 2, "the scene is really nonlinear")
+    close(mm[-1]["reaction_bottom_y"], si[-1]["reaction_bottom_y"] * 1e-3, 1e-6, "reaction in N/mm")
+
+
+def case_cut_back():
+    """P3.2: a neo-Hookean block compressed by 40 % in one step with at most
+    4 Newton iterations per attempt cannot converge at once; the step must be
+    cut back (the log says why), retried, and the run must end at load
+    factor 1. With no cut-backs allowed the same run must fail with exit
+    status 2 and say which step failed and why."""
+    sets = ["Discretization/Geometric nonlinearity=true", "Nonlinear solver/Maximum iterations=4",
+            "Boundary condition load/Type=displacement", "Boundary condition load/Function=0; -0.4*t"]
+    rows, log, _ = run(scene("block.prm"), *sets)
+    check(rows[-1]["load_factor"] == 1.0, "run reaches load factor 1")
+    check(rows[-1]["cut_backs"] >= 1, f"{int(rows[-1]['cut_backs'])} cut-back(s) recorded")
+    check("step failed: no convergence in 4 Newton iterations" in log, "log says why the step failed")
+    check("cutting back" in log, "log says it cuts back")
+    _, log, _ = run(scene("block.prm"), *sets, "Load stepping/Maximum cut-backs=0", expect_status=2)
+    check(re.search(r"load step 1 failed after 0 cut-backs: no convergence", log) is not None,
+          "failure names the step and the reason")
+
+
+def case_mpi_matches_serial():
+    """P4/P7.1: the same scene (two bodies, one of them locally refined,
+    neo-Hookean) on two MPI processes gives the serial statistics to solver
+    tolerance: same iterations, reactions equal to 1e-8."""
+    sets = ["Discretization/Geometric nonlinearity=true", "Load stepping/Number of steps=2",
+            "Body block/Block/Subdivisions=8, 4", "Body block/Refinement/Local refinements=2",
+            "Body block/Refinement/Refinement point=1, 1", "Body block/Refinement/Refinement radius=0.5"]
+    serial, _, _ = run(scene("block.prm"), *sets, name="serial")
+    parallel, log, _ = run(scene("block.prm"), *sets, name="parallel", mpi=True)
+    check("on 2 process(es)" in log, "ran on two processes")
+    for s, p in zip(serial, parallel):
+        check(s["kinsol_iterations"] == p["kinsol_iterations"], f"step {int(s['step'])}: same iterations")
+        close(p["reaction_bottom_y"], s["reaction_bottom_y"], 1e-8, f"step {int(s['step'])}: same reaction")
+        check(s["dofs"] == p["dofs"], "same number of DoFs")
+
+
+def case_vtu_fields():
+    """P5.2: the VTU files open with VTK's own reader and hold the fields
+    ParaView users need, with the right values: the top of the default-like
+    block moves by u_y = -0.01 (prescribed), the bottom by 0; stress and von
+    Mises stress are present; material_id is 0; the .pvd lists every step."""
+    import vtk  # python3-vtk9
+    from vtk.util.numpy_support import vtk_to_numpy
+    _, _, out = run(os.path.join(ROOT, "parameters", "default.prm"), name="vtu")
+    pvd = open(os.path.join(out, "vtu.pvd")).read()
+    files = re.findall(r'file="([^"]+)"', pvd)
+    check(files == ["vtu-0001.vtu", "vtu-0002.vtu"], f"pvd lists both steps: {files}")
+    r = vtk.vtkXMLUnstructuredGridReader()
+    r.SetFileName(os.path.join(out, files[-1]))
+    r.Update()
+    grid = r.GetOutput()
+    check(grid.GetNumberOfPoints() > 0, f"{grid.GetNumberOfPoints()} points read")
+    pd = grid.GetPointData()
+    for field in ("displacement", "strain", "stress", "stress_zz", "von_Mises"):
+        check(pd.GetArray(field) is not None, f"point field {field}")
+    # deal.II writes cell data as piecewise constant point data.
+    check(pd.GetArray("material_id") is not None, "field material_id")
+    pts = vtk_to_numpy(grid.GetPoints().GetData())
+    u = vtk_to_numpy(pd.GetArray("displacement"))
+    top = pts[:, 1] > 1 - 1e-9
+    bottom = pts[:, 1] < 1e-9
+    check(abs(u[top, 1] + 0.01).max() < 1e-12, "u_y = -0.01 on the top")
+    check(abs(u[bottom]).max() < 1e-12, "u = 0 on the bottom")
+    check(vtk_to_numpy(pd.GetArray("von_Mises")).max() > 0, "von Mises stress is positive")
+    check(vtk_to_numpy(pd.GetArray("material_id")).max() == 0, "one body, material id 0")
+
+
+def case_interrupted_run_keeps_complete_steps():
+    """P5.1: a run killed part-way leaves only complete files: every file in
+    the .pvd exists and VTK reads it, no .tmp file is listed, and the
+    statistics table has only whole rows."""
+    import vtk
+    out = tempfile.mkdtemp(prefix="glide-kill-")
+    cmd = [ARGS.glide, scene("block.prm"), "--set", f"Output/Directory={out}", "--set", "Scene name=k",
+           "--set", "Load stepping/Number of steps=400", "--set", "Body block/Block/Subdivisions=40, 20",
+           "--set", "Discretization/Geometric nonlinearity=true"]
+    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    stats = os.path.join(out, "k", "statistics.csv")
+    deadline = time.time() + 120
+    while time.time() < deadline:
+        if os.path.exists(stats) and open(stats).read().count("\n") >= 4:
+            break
+        time.sleep(0.05)
+    p.send_signal(signal.SIGKILL)
+    p.wait()
+    files = re.findall(r'file="([^"]+)"', open(os.path.join(out, "k", "k.pvd")).read())
+    check(len(files) >= 2, f"{len(files)} complete steps listed")
+    for f in files:
+        check(not f.endswith(".tmp"), f"{f} is not a temporary file")
+        r = vtk.vtkXMLUnstructuredGridReader()
+        r.SetFileName(os.path.join(out, "k", f))
+        r.Update()
+        check(r.GetOutput().GetNumberOfPoints() > 0, f"{f} reads")
+    lines = open(stats).read().split("\n")
+    check(lines[-1] == "", "statistics end with a complete row")
+    n = len(lines[0].split(","))
+    check(all(len(l.split(",")) == n for l in lines[:-1]), "every row is complete")
+
+
+def case_parameter_doc_up_to_date():
+    """P4.1: doc/parameters.md is generated from 'glide --print-parameters';
+    this test fails when the two differ (regenerate with
+    'python3 doc/make_parameters_md.py --glide build/glide')."""
+    p = subprocess.run([sys.executable, os.path.join(ROOT, "doc", "make_parameters_md.py"), "--glide",
+                        ARGS.glide, "--check"], capture_output=True, text=True)
+    print(p.stdout + p.stderr)
+    check(p.returncode == 0, "doc/parameters.md matches --print-parameters")
+
+
+def case_shipped_scenes_run():
+    """Every scene in parameters/ runs to the end (exit status 0) and writes
+    a statistics row per step."""
+    for f in sorted(os.listdir(os.path.join(ROOT, "parameters"))):
+        if f.endswith(".prm"):
+            rows, _, _ = run(os.path.join(ROOT, "parameters", f), "Output/Write VTU=false")
+            check(len(rows) >= 1 and rows[-1]["load_factor"] == 1.0, f"{f} runs to load factor 1")
+
+
+def main():
+    global ARGS
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--glide", required=True)
+    ap.add_argument("--case", required=True)
+    ap.add_argument("--mpirun", default="mpirun -np 2")
+    ARGS = ap.parse_args()
+    ARGS.glide = os.path.abspath(ARGS.glide)
+    globals()["case_" + ARGS.case]()
+    print("PASSED" if not failures else f"FAILED: {len(failures)} check(s)")
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()

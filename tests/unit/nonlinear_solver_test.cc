@@ -1,0 +1,121 @@
+// Unit tests of the KINSOL driver (P3.1). Why the expected answers are
+// right: F_i(x) = x_i^3 + x_i - b_i has one real root per component, and
+// Newton converges to it quadratically, so a handful of iterations suffice;
+// F_i(x) = x_i^2 + 1 has no real root, so the solve must report failure
+// even in a release build of deal.II, where KINSOL's status is not checked
+// (the driver re-evaluates the residual itself).
+#include <glide/solver/nonlinear_solver.h>
+
+#include <deal.II/base/index_set.h>
+
+#include <gtest/gtest.h>
+
+using namespace dealii;
+using namespace glide;
+
+namespace
+{
+  struct Problem
+  {
+    IndexSet                   owned{8};
+    NonlinearSolver::VectorType diagonal;
+    bool                       solvable = true;
+    unsigned int               reports  = 0;
+
+    Problem()
+    {
+      owned.add_range(0, 8);
+    }
+
+    NonlinearSolver::Callbacks
+    callbacks()
+    {
+      NonlinearSolver::Callbacks cb;
+      cb.reinit_vector = [this](NonlinearSolver::VectorType &v) { v.reinit(owned, MPI_COMM_WORLD); };
+      cb.residual      = [this](const NonlinearSolver::VectorType &x, NonlinearSolver::VectorType &F) {
+        for (unsigned int i = 0; i < 8; ++i)
+          F[i] = solvable ? x[i] * x[i] * x[i] + x[i] - (1. + i) : x[i] * x[i] + 1.;
+        F.compress(VectorOperation::insert);
+      };
+      cb.setup_jacobian = [this](const NonlinearSolver::VectorType &x) {
+        diagonal.reinit(owned, MPI_COMM_WORLD);
+        for (unsigned int i = 0; i < 8; ++i)
+          diagonal[i] = solvable ? 3 * x[i] * x[i] + 1. : 2 * x[i] + (x[i] == 0 ? 1e-3 : 0.);
+        diagonal.compress(VectorOperation::insert);
+      };
+      cb.solve_jacobian = [this](const NonlinearSolver::VectorType &rhs, NonlinearSolver::VectorType &dx) {
+        for (unsigned int i = 0; i < 8; ++i)
+          dx[i] = rhs[i] / diagonal[i];
+        dx.compress(VectorOperation::insert);
+        return 1u;
+      };
+      cb.report = [this](unsigned int, double) { ++reports; };
+      return cb;
+    }
+  };
+} // namespace
+
+TEST(NonlinearSolver, ConvergesQuadraticallyOnASolvableSystem)
+{
+  Problem                   p;
+  NonlinearSolverParameters parameters;
+  parameters.tolerance = 1e-12;
+  NonlinearSolver             solver(parameters, MPI_COMM_WORLD);
+  NonlinearSolver::VectorType x(p.owned, MPI_COMM_WORLD);
+  const auto                  result = solver.solve(x, p.callbacks(), 1., 1.);
+  EXPECT_TRUE(result.converged) << result.message;
+  EXPECT_LE(result.iterations, 10u);
+  EXPECT_GE(result.iterations, 3u);
+  EXPECT_LE(result.residual_norm, 1e-12);
+  for (unsigned int i = 0; i < 8; ++i)
+    EXPECT_NEAR(x[i] * x[i] * x[i] + x[i], 1. + i, 1e-10);
+  EXPECT_EQ(p.reports, result.iterations);
+}
+
+TEST(NonlinearSolver, ReportsFailureWhenThereIsNoSolution)
+{
+  Problem p;
+  p.solvable = false;
+  NonlinearSolverParameters parameters;
+  parameters.maximum_iterations = 8;
+  NonlinearSolver             solver(parameters, MPI_COMM_WORLD);
+  NonlinearSolver::VectorType x(p.owned, MPI_COMM_WORLD);
+  x                 = 0.5;
+  const auto result = solver.solve(x, p.callbacks(), 1., 1.);
+  EXPECT_FALSE(result.converged);
+  EXPECT_FALSE(result.message.empty());
+  EXPECT_GT(result.residual_norm, 0.5);
+  // The initial guess is restored after a failure.
+  EXPECT_EQ(x[0], 0.5);
+}
+
+TEST(NonlinearSolver, ResidualScalingMakesToleranceUnitFree)
+{
+  // The same system with residuals in other units (x 1e6) and the matching
+  // scaling needs the same number of iterations.
+  unsigned int iterations[2];
+  for (unsigned int k = 0; k < 2; ++k)
+    {
+      Problem    p;
+      const double units = k == 0 ? 1. : 1e6;
+      auto       cb    = p.callbacks();
+      auto       plain = cb.residual;
+      cb.residual      = [&](const NonlinearSolver::VectorType &x, NonlinearSolver::VectorType &F) {
+        plain(x, F);
+        F *= units;
+      };
+      auto plain_solve  = cb.solve_jacobian;
+      cb.solve_jacobian = [&](const NonlinearSolver::VectorType &rhs, NonlinearSolver::VectorType &dx) {
+        NonlinearSolver::VectorType r = rhs;
+        r /= units;
+        return plain_solve(r, dx);
+      };
+      NonlinearSolverParameters parameters;
+      NonlinearSolver             solver(parameters, MPI_COMM_WORLD);
+      NonlinearSolver::VectorType x(p.owned, MPI_COMM_WORLD);
+      const auto                  result = solver.solve(x, cb, 1. / units, 1.);
+      ASSERT_TRUE(result.converged) << result.message;
+      iterations[k] = result.iterations;
+    }
+  EXPECT_EQ(iterations[0], iterations[1]);
+}
