@@ -245,10 +245,10 @@ def case_vtu_fields():
     check(pd.GetArray("material_id") is not None, "field material_id")
     pts = vtk_to_numpy(grid.GetPoints().GetData())
     u = vtk_to_numpy(pd.GetArray("displacement"))
-    top = pts[:, 1] > 1 - 1e-9
-    bottom = pts[:, 1] < 1e-9
-    check(abs(u[top, 1] + 0.01).max() < 1e-12, "u_y = -0.01 on the top")
-    check(abs(u[bottom]).max() < 1e-12, "u = 0 on the bottom")
+    top = pts[:, 1] > 1 - 1e-6  # float32 coordinates
+    bottom = pts[:, 1] < 1e-6
+    check(top.sum() > 0 and abs(u[top, 1] + 0.01).max() < 1e-7, "u_y = -0.01 on the top")
+    check(bottom.sum() > 0 and abs(u[bottom]).max() < 1e-7, "u = 0 on the bottom")
     check(vtk_to_numpy(pd.GetArray("von_Mises")).max() > 0, "von Mises stress is positive")
     check(vtk_to_numpy(pd.GetArray("material_id")).max() == 0, "one body, material id 0")
 
