@@ -214,8 +214,11 @@ namespace glide
           surface_loads.push_back(std::move(load));
       }
 
+    hanging_node_constraints.reinit(relevant);
+    DoFTools::make_hanging_node_constraints(dof_handler, hanging_node_constraints);
+    hanging_node_constraints.close();
     homogeneous_constraints = constraints_at(0.);
-    for (const auto i : homogeneous_constraints.get_lines())
+    for (const auto &i : homogeneous_constraints.get_lines())
       homogeneous_constraints.set_inhomogeneity(i.index, 0.);
 
     DynamicSparsityPattern dsp(relevant);
@@ -313,7 +316,7 @@ namespace glide
   Elasticity<dim>::residual(const VectorType &U, const double t, VectorType &F) const
   {
     TimerOutput::Scope s(timer, "assembly: residual");
-    assemble(U, t, &F, nullptr, true);
+    assemble(U, t, &F, nullptr, homogeneous_constraints);
   }
 
   template <int dim>
@@ -321,7 +324,7 @@ namespace glide
   Elasticity<dim>::jacobian(const VectorType &U, MatrixType &J) const
   {
     TimerOutput::Scope s(timer, "assembly: Jacobian");
-    assemble(U, 0., nullptr, &J, true);
+    assemble(U, 0., nullptr, &J, homogeneous_constraints);
   }
 
   template <int dim>
@@ -330,7 +333,7 @@ namespace glide
                             const double      t,
                             VectorType *      F,
                             MatrixType *      J,
-                            const bool        condense) const
+                            const AffineConstraints<double> &constraints) const
   {
     VectorType U_ghost(owned, relevant, comm);
     U_ghost = U;
@@ -471,17 +474,12 @@ namespace glide
                   }
 
         cell->get_dof_indices(dofs);
-        if (condense)
-          {
-            if (F && J)
-              homogeneous_constraints.distribute_local_to_global(cell_matrix, cell_rhs, dofs, *J, *F);
-            else if (F)
-              homogeneous_constraints.distribute_local_to_global(cell_rhs, dofs, *F);
-            else
-              homogeneous_constraints.distribute_local_to_global(cell_matrix, dofs, *J);
-          }
+        if (F && J)
+          constraints.distribute_local_to_global(cell_matrix, cell_rhs, dofs, *J, *F);
         else if (F)
-          F->add(dofs, cell_rhs);
+          constraints.distribute_local_to_global(cell_rhs, dofs, *F);
+        else
+          constraints.distribute_local_to_global(cell_matrix, dofs, *J);
       }
 
     // Concentrated forces at vertices.
@@ -496,10 +494,7 @@ namespace glide
               Vector<double>                       f(dim);
               for (unsigned int d = 0; d < dim; ++d)
                 f[d] = -load[d];
-              if (condense)
-                homogeneous_constraints.distribute_local_to_global(f, idx, *F);
-              else
-                F->add(idx, f);
+              constraints.distribute_local_to_global(f, idx, *F);
             }
         }
 
@@ -513,16 +508,17 @@ namespace glide
   std::map<std::string, Tensor<1, dim>>
   Elasticity<dim>::reactions(const VectorType &U, const double t) const
   {
+    // Condense hanging nodes only: then the residual vanishes at every DoF
+    // but the Dirichlet ones, where it is the reaction.
     VectorType F(owned, comm);
-    assemble(U, t, &F, nullptr, false);
+    assemble(U, t, &F, nullptr, hanging_node_constraints);
     std::map<std::string, Tensor<1, dim>> result;
     for (const auto &d : dirichlet)
       {
         const std::string &name = d.parameters->name;
         // Only the components this condition constrains.
         const ComponentMask mask = component_mask(*d.parameters);
-        IndexSet            dofs;
-        DoFTools::extract_boundary_dofs(dof_handler, mask, dofs, d.ids);
+        const IndexSet      dofs = DoFTools::extract_boundary_dofs(dof_handler, mask, d.ids);
         Tensor<1, dim>                       sum;
         std::vector<types::global_dof_index> local_dofs(fe.n_dofs_per_cell());
         std::set<types::global_dof_index>    counted;

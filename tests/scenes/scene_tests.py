@@ -222,6 +222,50 @@ def case_mpi_matches_serial():
         check(s["dofs"] == p["dofs"], "same number of DoFs")
 
 
+def case_thick_cylinder_lame():
+    """P1.1 axisymmetric: Lame's thick-walled cylinder (a = 1, b = 2, p = 1,
+    nu = 0.3) with u_z = 0 at both ends. sigma_zz = nu (sigma_rr +
+    sigma_tt) = 2 nu p a^2 / (b^2 - a^2) is uniform, so each end carries the
+    axial force 2 pi nu p a^2; the support pulls (negative reaction at the
+    bottom, positive at the top). This needs the hoop strain and the 2 pi r
+    weighting to be right."""
+    rows, _, _ = run(os.path.join(ROOT, "parameters", "thick-cylinder.prm"), "Output/Write VTU=false")
+    close(rows[-1]["reaction_bottom_y"], -2 * math.pi * 0.3, 1e-8, "bottom axial reaction")
+    close(rows[-1]["reaction_top_y"], 2 * math.pi * 0.3, 1e-8, "top axial reaction")
+
+
+def case_two_bodies_carry_their_weight():
+    """P1.3: two bodies in one scene, each supported on its own, both locally
+    refined (hanging nodes). Each support carries exactly the weight of its
+    own body: the block 4 x 0.5 with rho g = 0.01 weighs 0.02 (exact, the
+    block is meshed exactly); the half cylinder weighs rho g times the area
+    of its discretized half disk, just below pi/2 * 0.01 (within 2 %: the
+    coarse arc has 3 segments, 12 after two refinements, and the inscribed
+    polygon has sin(pi/12)/(pi/12) = 0.989 of the area)."""
+    rows, _, _ = run(os.path.join(ROOT, "parameters", "two-bodies.prm"), "Output/Write VTU=false")
+    close(rows[-1]["reaction_ground_y"], 0.02, 1e-9, "block weight on the ground")
+    w = rows[-1]["reaction_hanger_y"]
+    check(0.98 * math.pi / 2 * 0.01 < w < math.pi / 2 * 0.01, f"half-cylinder weight {w:.6g} just below {math.pi / 200:.6g}")
+
+
+def case_amg_matches_direct():
+    """P3.3: GMRES with ML AMG (rigid-body modes as near null space) and the
+    direct solver give the same answer to solver tolerance on a 3D block,
+    linear and neo-Hookean, in the same number of Newton iterations."""
+    sets = ["Dimension=3", "Analysis type=3d", "Body block/Block/Lower corner=0, 0, 0",
+            "Body block/Block/Upper corner=2, 1, 1", "Body block/Block/Subdivisions=8, 4, 4",
+            "Boundary condition load/Function=t; -5*t; 0"]
+    for nonlinear in ("false", "true"):
+        extra = [f"Discretization/Geometric nonlinearity={nonlinear}"]
+        direct, _, _ = run(scene("block.prm"), *sets, *extra, "Linear solver/Type=direct", name="direct")
+        amg, log, _ = run(scene("block.prm"), *sets, *extra, "Linear solver/Type=amg", name="amg")
+        check("GMRES with ML algebraic multigrid" in log, "AMG was used")
+        close(amg[-1]["reaction_bottom_y"], direct[-1]["reaction_bottom_y"], 1e-7, f"nonlinear={nonlinear}: same reaction")
+        check(amg[-1]["kinsol_iterations"] == direct[-1]["kinsol_iterations"],
+              f"nonlinear={nonlinear}: same Newton iterations")
+        check(direct[-1]["linear_iterations"] == direct[-1]["kinsol_iterations"], "direct: one solve per Newton step")
+
+
 def case_vtu_fields():
     """P5.2: the VTU files open with VTK's own reader and hold the fields
     ParaView users need, with the right values: the top of the default-like

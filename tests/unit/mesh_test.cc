@@ -151,3 +151,26 @@ TEST(Mesh, UnreadableMeshFileIsAnInputError)
   std::map<types::boundary_id, std::string> names;
   EXPECT_THROW(build_body_mesh<2>(m, "slab", tria, names), InputError);
 }
+
+TEST(Mesh, AbaqusSurfacesBecomeNumberedSurfaces)
+{
+  // deal.II's Abaqus reader numbers surfaces by the digits of their name
+  // (SS2 -> 2); glide names them <body>.<number>.
+  MeshParameters m;
+  m.type = "file";
+  m.file = std::string(GLIDE_TEST_DATA) + "/two_quads.inp";
+  Triangulation<2>                          tria;
+  std::map<types::boundary_id, std::string> names;
+  build_body_mesh<2>(m, "part", tria, names);
+  EXPECT_EQ(tria.n_active_cells(), 2u);
+  EXPECT_EQ(values(names).count("2"), 1u);
+  unsigned int top_faces = 0;
+  for (const auto &cell : tria.active_cell_iterators())
+    for (const auto &face : cell->face_iterators())
+      if (face->at_boundary() && face->boundary_id() == 2)
+        {
+          EXPECT_NEAR(face->center()[1], 1., 1e-12);
+          ++top_faces;
+        }
+  EXPECT_EQ(top_faces, 2u);
+}

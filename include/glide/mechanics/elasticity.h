@@ -175,8 +175,13 @@ namespace glide
       std::vector<std::pair<std::array<dealii::types::global_dof_index, dim>, dealii::Point<dim>>> nodes;
     };
 
+    /// Residual and/or Jacobian, condensed with @p constraints.
     void
-    assemble(const VectorType &U, const double t, VectorType *F, MatrixType *J, const bool condense) const;
+    assemble(const VectorType &                       U,
+             const double                             t,
+             VectorType *                             F,
+             MatrixType *                             J,
+             const dealii::AffineConstraints<double> &constraints) const;
 
     /// The displacement components a Dirichlet condition prescribes.
     dealii::ComponentMask
@@ -195,6 +200,7 @@ namespace glide
     dealii::DoFHandler<dim>                   dof_handler;
     dealii::IndexSet                          owned, relevant;
     dealii::AffineConstraints<double>         homogeneous_constraints;
+    dealii::AffineConstraints<double>         hanging_node_constraints;
     MatrixType                                pattern_matrix;
     std::vector<Load>                         dirichlet, surface_loads;
     std::vector<PointForce>                   point_forces;
