@@ -38,8 +38,8 @@ int
 main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const MPI_Comm comm = MPI_COMM_WORLD;
-  const bool     root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+  const MPI_Comm                           comm = MPI_COMM_WORLD;
+  const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
 
   try
     {
@@ -59,25 +59,31 @@ main(int argc, char **argv)
               std::string format = "prm";
               if (i + 1 < args.size() && args[i + 1].rfind("--", 0) != 0)
                 format = args[++i];
-              glide::require(format == "prm" || format == "json" || format == "xml",
-                             "--print-parameters takes prm, json or xml, not '" + format + "'.");
+              glide::require(
+                format == "prm" || format == "json" || format == "xml",
+                "--print-parameters takes prm, json or xml, not '" + format +
+                  "'.");
               if (root)
                 glide::Scene::print_parameters(std::cout, format);
               return 0;
             }
           if (a == "--set")
             {
-              glide::require(i + 1 < args.size(), "--set needs an argument \"Path/Entry=value\".");
+              glide::require(i + 1 < args.size(),
+                             "--set needs an argument \"Path/Entry=value\".");
               overrides.push_back(args[++i]);
               continue;
             }
-          glide::require(a.rfind("--", 0) != 0, "Unknown option '" + a + "'; see 'glide --help'.");
+          glide::require(a.rfind("--", 0) != 0,
+                         "Unknown option '" + a + "'; see 'glide --help'.");
           glide::require(scene_file.empty(),
-                         "More than one scene file given ('" + scene_file + "' and '" + a +
+                         "More than one scene file given ('" + scene_file +
+                           "' and '" + a +
                            "'); glide runs one scene at a time.");
           scene_file = a;
         }
-      glide::require(!scene_file.empty(), std::string("No scene file given.\n") + usage);
+      glide::require(!scene_file.empty(),
+                     std::string("No scene file given.\n") + usage);
 
       const glide::Scene scene = glide::Scene::read(scene_file, overrides);
       if (scene.dimension == 2)

@@ -46,9 +46,10 @@ namespace glide
   void
   run_scene(const Scene &scene, MPI_Comm comm)
   {
-    ConditionalOStream pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0);
-    TimerOutput        timer(comm, pcout, TimerOutput::never, TimerOutput::wall_times);
-    Timer              wall(comm);
+    ConditionalOStream pcout(std::cout,
+                             Utilities::MPI::this_mpi_process(comm) == 0);
+    TimerOutput timer(comm, pcout, TimerOutput::never, TimerOutput::wall_times);
+    Timer       wall(comm);
 
     Elasticity<dim> elasticity(scene, comm, timer);
     elasticity.setup(); // every input check happens here, before output
@@ -61,12 +62,17 @@ namespace glide
     linear_solver.choose(dim, dof_handler.n_dofs());
 
     pcout << "glide: scene '" << scene.name << "' (" << scene.file << ")\n"
-          << "  analysis:       " << scene.analysis_name() << ", " << dim << "D, degree " << scene.degree
-          << (scene.geometric_nonlinearity ? ", geometrically nonlinear" : ", geometrically linear") << "\n"
+          << "  analysis:       " << scene.analysis_name() << ", " << dim
+          << "D, degree " << scene.degree
+          << (scene.geometric_nonlinearity ? ", geometrically nonlinear" :
+                                             ", geometrically linear")
+          << "\n"
           << "  bodies:         " << scene.bodies.size() << ", "
-          << elasticity.get_triangulation().n_global_active_cells() << " cells, " << dof_handler.n_dofs()
-          << " DoFs on " << Utilities::MPI::n_mpi_processes(comm) << " process(es)\n"
-          << "  surfaces:       " << elasticity.get_mesh().surface_list() << "\n"
+          << elasticity.get_triangulation().n_global_active_cells()
+          << " cells, " << dof_handler.n_dofs() << " DoFs on "
+          << Utilities::MPI::n_mpi_processes(comm) << " process(es)\n"
+          << "  surfaces:       " << elasticity.get_mesh().surface_list()
+          << "\n"
           << "  linear solver:  " << linear_solver.description() << "\n"
           << "  active effects: ";
     const auto effects = elasticity.active_effects();
@@ -84,7 +90,8 @@ namespace glide
             const std::string f = entry.path().filename().string();
             if ((f.rfind(scene.name + "-", 0) == 0 &&
                  (f.find(".vtu") != std::string::npos)) ||
-                f == scene.name + ".pvd" || f == "statistics.csv" || f == "timings.csv")
+                f == scene.name + ".pvd" || f == "statistics.csv" ||
+                f == "timings.csv")
               std::filesystem::remove(entry.path());
           }
       }
@@ -96,12 +103,14 @@ namespace glide
     if (linear_solver.choose(dim, dof_handler.n_dofs()) == "amg")
       modes = elasticity.rigid_body_modes();
 
-    const auto &owned = elasticity.locally_owned();
-    VectorType  U(owned, comm);
-    double      t = 0.;
+    const auto                &owned = elasticity.locally_owned();
+    VectorType                 U(owned, comm);
+    double                     t = 0.;
     NonlinearSolver::Callbacks callbacks;
     callbacks.reinit_vector = [&](VectorType &v) { v.reinit(owned, comm); };
-    callbacks.residual      = [&](const VectorType &u, VectorType &F) { elasticity.residual(u, t, F); };
+    callbacks.residual      = [&](const VectorType &u, VectorType &F) {
+      elasticity.residual(u, t, F);
+    };
     callbacks.setup_jacobian = [&](const VectorType &u) {
       elasticity.jacobian(u, jacobian);
       TimerOutput::Scope s(timer, "linear solver: setup");
@@ -109,12 +118,14 @@ namespace glide
     };
     callbacks.solve_jacobian = [&](const VectorType &rhs, VectorType &dx) {
       TimerOutput::Scope s(timer, "linear solver: solve");
-      const unsigned int n = linear_solver.solve(rhs, dx, scene.linear_solver.relative_tolerance);
+      const unsigned int n =
+        linear_solver.solve(rhs, dx, scene.linear_solver.relative_tolerance);
       elasticity.update_constraints().distribute(dx);
       return n;
     };
     callbacks.report = [&](const unsigned int k, const double r) {
-      pcout << "    iteration " << std::setw(2) << k << ": scaled residual " << scientific(r) << std::endl;
+      pcout << "    iteration " << std::setw(2) << k << ": scaled residual "
+            << scientific(r) << std::endl;
     };
     NonlinearSolver newton(scene.nonlinear_solver, comm);
 
@@ -129,26 +140,32 @@ namespace glide
           t = 1.;
         VectorType U_trial = U;
         elasticity.constraints_at(t).distribute(U_trial);
-        pcout << "Step " << step + 1 << ": load factor " << t << " (increment " << t - t_old << ")" << std::endl;
+        pcout << "Step " << step + 1 << ": load factor " << t << " (increment "
+              << t - t_old << ")" << std::endl;
         Timer      step_timer(comm);
-        const auto result =
-          newton.solve(U_trial, callbacks, elasticity.residual_scale(), 1. / elasticity.length_scale());
+        const auto result = newton.solve(U_trial,
+                                         callbacks,
+                                         elasticity.residual_scale(),
+                                         1. / elasticity.length_scale());
         if (!result.converged)
           {
             pcout << "  step failed: " << result.message << std::endl;
             t = t_old;
             if (cut_backs >= scene.load_stepping.maximum_cut_backs)
-              throw std::runtime_error("load step " + std::to_string(step + 1) + " failed after " +
-                                       std::to_string(cut_backs) + " cut-backs: " + result.message);
+              throw std::runtime_error(
+                "load step " + std::to_string(step + 1) + " failed after " +
+                std::to_string(cut_backs) + " cut-backs: " + result.message);
             ++cut_backs;
             dt *= scene.load_stepping.cut_back_factor;
-            pcout << "  cutting back: new increment " << dt << " (cut-back " << cut_backs << " of at most "
+            pcout << "  cutting back: new increment " << dt << " (cut-back "
+                  << cut_backs << " of at most "
                   << scene.load_stepping.maximum_cut_backs << ")" << std::endl;
             continue;
           }
         U = U_trial;
         ++step;
-        pcout << "  converged in " << result.iterations << " iteration(s), scaled residual "
+        pcout << "  converged in " << result.iterations
+              << " iteration(s), scaled residual "
               << scientific(result.residual_norm) << std::endl;
 
         std::vector<std::pair<std::string, std::string>> row{
@@ -162,10 +179,11 @@ namespace glide
           {"dofs", std::to_string(dof_handler.n_dofs())}};
         {
           TimerOutput::Scope s(timer, "postprocessing");
-          const char *axis[] = {"x", "y", "z"};
+          const char        *axis[] = {"x", "y", "z"};
           for (const auto &[surface, force] : elasticity.reactions(U, t))
             for (unsigned int d = 0; d < dim; ++d)
-              row.emplace_back("reaction_" + surface + "_" + axis[d], format_number(force[d]));
+              row.emplace_back("reaction_" + surface + "_" + axis[d],
+                               format_number(force[d]));
           if (scene.manufactured_solution != "none")
             {
               const auto [l2, h1] = elasticity.errors(U);
@@ -174,7 +192,8 @@ namespace glide
             }
         }
         statistics.add_row(row);
-        if (scene.output.write_vtu && (step % scene.output.every == 0 || t >= 1.))
+        if (scene.output.write_vtu &&
+            (step % scene.output.every == 0 || t >= 1.))
           {
             TimerOutput::Scope s(timer, "output");
             vtu.write(step, t, U);
@@ -185,9 +204,10 @@ namespace glide
 
     timer.print_summary();
     const double memory = peak_memory_mib(comm);
-    pcout << "Finished " << step << " load step(s) with " << cut_backs << " cut-back(s) in "
-          << std::fixed << std::setprecision(2) << wall.wall_time() << " s; peak memory " << memory
-          << " MiB" << std::endl;
+    pcout << "Finished " << step << " load step(s) with " << cut_backs
+          << " cut-back(s) in " << std::fixed << std::setprecision(2)
+          << wall.wall_time() << " s; peak memory " << memory << " MiB"
+          << std::endl;
     if (Utilities::MPI::this_mpi_process(comm) == 0)
       {
         std::ofstream out(directory + "/timings.csv");
@@ -197,9 +217,11 @@ namespace glide
             << "linear_solver," << linear_solver.description() << "\n"
             << "total_wall_time," << wall.wall_time() << "\n"
             << "peak_memory_mib," << memory << "\n";
-        for (const auto &[section, time] : timer.get_summary_data(TimerOutput::total_wall_time))
+        for (const auto &[section, time] :
+             timer.get_summary_data(TimerOutput::total_wall_time))
           out << "time:" << section << "," << time << "\n";
-        for (const auto &[section, n] : timer.get_summary_data(TimerOutput::n_calls))
+        for (const auto &[section, n] :
+             timer.get_summary_data(TimerOutput::n_calls))
           out << "calls:" << section << "," << n << "\n";
       }
   }

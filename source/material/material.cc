@@ -38,7 +38,7 @@ namespace glide
   }
 
   void
-  MaterialParameters::parse_parameters(ParameterHandler &prm,
+  MaterialParameters::parse_parameters(ParameterHandler  &prm,
                                        const std::string &path)
   {
     prm.enter_subsection("Material");

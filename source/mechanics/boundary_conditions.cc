@@ -70,35 +70,35 @@ namespace glide
   }
 
   void
-  BoundaryConditionParameters::parse_parameters(ParameterHandler &prm,
+  BoundaryConditionParameters::parse_parameters(ParameterHandler  &prm,
                                                 const std::string &bc_name,
                                                 const unsigned int dim)
   {
-    name             = bc_name;
-    surface          = prm.get("Surface");
-    const auto t     = prm.get("Type");
-    type             = (t == "fixed"        ? BoundaryConditionType::fixed :
-                        t == "displacement" ? BoundaryConditionType::displacement :
-                        t == "traction"     ? BoundaryConditionType::traction :
-                        t == "pressure"     ? BoundaryConditionType::pressure :
-                        t == "force"        ? BoundaryConditionType::force :
-                        t == "XSYMM"        ? BoundaryConditionType::xsymm :
-                        t == "YSYMM"        ? BoundaryConditionType::ysymm :
-                                              BoundaryConditionType::zsymm);
-    const auto c     = Utilities::split_string_list(prm.get("Components"));
-    components       = {false, false, false};
+    name         = bc_name;
+    surface      = prm.get("Surface");
+    const auto t = prm.get("Type");
+    type         = (t == "fixed"        ? BoundaryConditionType::fixed :
+                    t == "displacement" ? BoundaryConditionType::displacement :
+                    t == "traction"     ? BoundaryConditionType::traction :
+                    t == "pressure"     ? BoundaryConditionType::pressure :
+                    t == "force"        ? BoundaryConditionType::force :
+                    t == "XSYMM"        ? BoundaryConditionType::xsymm :
+                    t == "YSYMM"        ? BoundaryConditionType::ysymm :
+                                          BoundaryConditionType::zsymm);
+    const auto c = Utilities::split_string_list(prm.get("Components"));
+    components   = {false, false, false};
     for (const auto &s : c)
       components[s == "x" ? 0 : s == "y" ? 1 : 2] = true;
     function = prm.get("Function");
 
-    const std::string path = "Boundary condition " + name;
+    const std::string path    = "Boundary condition " + name;
     const bool needs_function = type == BoundaryConditionType::displacement ||
                                 type == BoundaryConditionType::traction ||
                                 type == BoundaryConditionType::pressure ||
                                 type == BoundaryConditionType::force;
     if (needs_function)
       {
-        const auto parts = Utilities::split_string_list(function, ';');
+        const auto         parts = Utilities::split_string_list(function, ';');
         const unsigned int expected =
           (type == BoundaryConditionType::pressure ? 1 : dim);
         require(!function.empty() && parts.size() == expected,
@@ -131,7 +131,7 @@ namespace glide
   }
 
   void
-  NodeSetParameters::parse_parameters(ParameterHandler &prm,
+  NodeSetParameters::parse_parameters(ParameterHandler  &prm,
                                       const std::string &set_name,
                                       const unsigned int dim)
   {

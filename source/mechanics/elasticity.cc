@@ -34,7 +34,9 @@ namespace glide
   } // namespace
 
   template <int dim>
-  Elasticity<dim>::Elasticity(const Scene &scene, MPI_Comm comm, TimerOutput &timer)
+  Elasticity<dim>::Elasticity(const Scene &scene,
+                              MPI_Comm     comm,
+                              TimerOutput &timer)
     : scene(scene)
     , comm(comm)
     , timer(timer)
@@ -52,7 +54,7 @@ namespace glide
                                   const unsigned int n_components,
                                   const std::string &parameter) const
   {
-    auto f = std::make_unique<FunctionParser<dim>>(n_components);
+    auto              f = std::make_unique<FunctionParser<dim>>(n_components);
     const std::string vars = (dim == 2 ? "x,y,t" : "x,y,z,t");
     try
       {
@@ -68,12 +70,14 @@ namespace glide
         std::ostringstream s;
         e.print_info(s);
         throw InputError("Parameter '" + parameter + "' = '" + expression +
-                         "' is not a valid expression in " + vars + ": " + s.str());
+                         "' is not a valid expression in " + vars + ": " +
+                         s.str());
       }
     catch (const std::exception &e)
       {
         throw InputError("Parameter '" + parameter + "' = '" + expression +
-                         "' is not a valid expression in " + vars + ": " + e.what());
+                         "' is not a valid expression in " + vars + ": " +
+                         e.what());
       }
     return f;
   }
@@ -82,7 +86,8 @@ namespace glide
   std::unique_ptr<Material>
   Elasticity<dim>::material(const unsigned int b) const
   {
-    return create_material(scene.bodies[b].material, scene.geometric_nonlinearity);
+    return create_material(scene.bodies[b].material,
+                           scene.geometric_nonlinearity);
   }
 
   template <int dim>
@@ -98,7 +103,8 @@ namespace glide
 
     max_youngs_modulus = 0;
     for (const auto &b : scene.bodies)
-      max_youngs_modulus = std::max(max_youngs_modulus, b.material.youngs_modulus);
+      max_youngs_modulus =
+        std::max(max_youngs_modulus, b.material.youngs_modulus);
 
     if (scene.manufactured_solution != "none")
       {
@@ -108,12 +114,15 @@ namespace glide
                     b.material.poissons_ratio == m.poissons_ratio,
                   "Parameter 'Verification/Manufactured solution' needs the "
                   "same material in every body.");
-        exact = std::make_unique<ManufacturedSolution<dim>>(axisymmetric, m.lambda(), m.mu());
+        exact = std::make_unique<ManufacturedSolution<dim>>(axisymmetric,
+                                                            m.lambda(),
+                                                            m.mu());
       }
     for (const auto &b : scene.bodies)
-      body_forces.push_back(b.body_force.empty() ?
-                              nullptr :
-                              parse_function(b.body_force, dim, "Body " + b.name + "/Body force"));
+      body_forces.push_back(
+        b.body_force.empty() ?
+          nullptr :
+          parse_function(b.body_force, dim, "Body " + b.name + "/Body force"));
 
     std::map<std::string, const NodeSetParameters *> node_sets;
     for (const auto &ns : scene.node_sets)
@@ -139,7 +148,8 @@ namespace glide
                 tol    = node_sets[bc.surface]->tolerance;
               }
             else
-              for (const auto &name : Utilities::split_string_list(bc.surface, ','))
+              for (const auto &name :
+                   Utilities::split_string_list(bc.surface, ','))
                 for (const auto id : mesh.surface(name, path + "/Surface"))
                   ids.insert(id);
             std::set<types::global_dof_index> seen;
@@ -166,14 +176,16 @@ namespace glide
                         if (cell->face(f)->at_boundary() &&
                             ids.count(cell->face(f)->boundary_id()))
                           for (const auto fv : cell->face(f)->vertex_indices())
-                            if (cell->face(f)->vertex_index(fv) == cell->vertex_index(v))
+                            if (cell->face(f)->vertex_index(fv) ==
+                                cell->vertex_index(v))
                               hit = true;
                     if (!hit)
                       continue;
                     std::array<types::global_dof_index, dim> dofs;
                     for (unsigned int c = 0; c < dim; ++c)
                       dofs[c] = cell->vertex_dof_index(v, c);
-                    if (owned.is_element(dofs[0]) && seen.insert(dofs[0]).second)
+                    if (owned.is_element(dofs[0]) &&
+                        seen.insert(dofs[0]).second)
                       pf.nodes.emplace_back(dofs, x);
                   }
             for (unsigned int i = 0; i < points.size(); ++i)
@@ -182,12 +194,13 @@ namespace glide
                 for (const auto c : points[i])
                   p << (&c == &points[i][0] ? "" : ", ") << c;
                 require(Utilities::MPI::sum(found[i], comm) > 0,
-                        "Node set '" + bc.surface + "': no mesh vertex within " +
-                          std::to_string(tol) + " of the point (" + p.str() +
-                          "); check 'Node set " + bc.surface +
-                          "/Points' or raise its 'Tolerance'.");
+                        "Node set '" + bc.surface +
+                          "': no mesh vertex within " + std::to_string(tol) +
+                          " of the point (" + p.str() + "); check 'Node set " +
+                          bc.surface + "/Points' or raise its 'Tolerance'.");
               }
-            require(Utilities::MPI::sum(static_cast<unsigned int>(pf.nodes.size()), comm) > 0,
+            require(Utilities::MPI::sum(
+                      static_cast<unsigned int>(pf.nodes.size()), comm) > 0,
                     "Parameter '" + path + "/Surface' = '" + bc.surface +
                       "' selects no node.");
             point_forces.push_back(std::move(pf));
@@ -215,14 +228,18 @@ namespace glide
       }
 
     hanging_node_constraints.reinit(relevant);
-    DoFTools::make_hanging_node_constraints(dof_handler, hanging_node_constraints);
+    DoFTools::make_hanging_node_constraints(dof_handler,
+                                            hanging_node_constraints);
     hanging_node_constraints.close();
     homogeneous_constraints = constraints_at(0.);
     for (const auto &i : homogeneous_constraints.get_lines())
       homogeneous_constraints.set_inhomogeneity(i.index, 0.);
 
     DynamicSparsityPattern dsp(relevant);
-    DoFTools::make_sparsity_pattern(dof_handler, dsp, homogeneous_constraints, false);
+    DoFTools::make_sparsity_pattern(dof_handler,
+                                    dsp,
+                                    homogeneous_constraints,
+                                    false);
     SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
     pattern_matrix.reinit(owned, owned, dsp, comm);
 
@@ -234,11 +251,15 @@ namespace glide
         for (const auto &face : cell->face_iterators())
           if (face->at_boundary())
             {
-              area += face->measure() *
-                      (axisymmetric ? 2 * numbers::PI * std::max(face->center()[0], face->measure()) : 1.);
+              area +=
+                face->measure() *
+                (axisymmetric ? 2 * numbers::PI *
+                                  std::max(face->center()[0], face->measure()) :
+                                1.);
               count += 1;
             }
-    reference_area = Utilities::MPI::sum(area, comm) / Utilities::MPI::sum(count, comm);
+    reference_area =
+      Utilities::MPI::sum(area, comm) / Utilities::MPI::sum(count, comm);
   }
 
   template <int dim>
@@ -266,11 +287,11 @@ namespace glide
     DoFTools::make_hanging_node_constraints(dof_handler, c);
     for (const auto &d : dirichlet)
       {
-        const auto &        bc   = *d.parameters;
+        const auto         &bc   = *d.parameters;
         const ComponentMask mask = component_mask(bc);
         std::map<types::boundary_id, const Function<dim> *> functions;
-        Functions::ZeroFunction<dim> zero(dim);
-        const Function<dim> *f = &zero;
+        Functions::ZeroFunction<dim>                        zero(dim);
+        const Function<dim>                                *f = &zero;
         if (bc.type == BoundaryConditionType::displacement)
           {
             if (exact)
@@ -283,19 +304,20 @@ namespace glide
           }
         for (const auto id : d.ids)
           functions[id] = f;
-        VectorTools::interpolate_boundary_values(*mapping, dof_handler, functions, c, mask);
+        VectorTools::interpolate_boundary_values(
+          *mapping, dof_handler, functions, c, mask);
       }
     if (axisymmetric)
       {
         // u_r = 0 on the axis r = 0: regularity of a solid of revolution.
-        const double tol = 1e-10 * mesh.scene_size();
+        const double                         tol = 1e-10 * mesh.scene_size();
         std::vector<types::global_dof_index> dofs(fe.n_dofs_per_face());
         for (const auto &cell : dof_handler.active_cell_iterators())
           if (!cell->is_artificial())
             for (const auto f : cell->face_indices())
               {
-                const auto face = cell->face(f);
-                bool on_axis = true;
+                const auto face    = cell->face(f);
+                bool       on_axis = true;
                 for (const auto v : face->vertex_indices())
                   on_axis = on_axis && std::abs(face->vertex(v)[0]) < tol;
                 if (!on_axis)
@@ -313,7 +335,9 @@ namespace glide
 
   template <int dim>
   void
-  Elasticity<dim>::residual(const VectorType &U, const double t, VectorType &F) const
+  Elasticity<dim>::residual(const VectorType &U,
+                            const double      t,
+                            VectorType       &F) const
   {
     TimerOutput::Scope s(timer, "assembly: residual");
     assemble(U, t, &F, nullptr, homogeneous_constraints);
@@ -329,10 +353,10 @@ namespace glide
 
   template <int dim>
   void
-  Elasticity<dim>::assemble(const VectorType &U,
-                            const double      t,
-                            VectorType *      F,
-                            MatrixType *      J,
+  Elasticity<dim>::assemble(const VectorType                &U,
+                            const double                     t,
+                            VectorType                      *F,
+                            MatrixType                      *J,
                             const AffineConstraints<double> &constraints) const
   {
     VectorType U_ghost(owned, relevant, comm);
@@ -344,18 +368,24 @@ namespace glide
 
     const QGauss<dim>     quadrature(scene.degree + 1);
     const QGauss<dim - 1> face_quadrature(scene.degree + 1);
-    FEValues<dim>         fe_values(*mapping, fe, quadrature,
-                            update_values | update_gradients | update_quadrature_points | update_JxW_values);
-    FEFaceValues<dim> fe_face(*mapping, fe, face_quadrature,
-                              update_values | update_quadrature_points | update_JxW_values | update_normal_vectors);
+    FEValues<dim>         fe_values(*mapping,
+                            fe,
+                            quadrature,
+                            update_values | update_gradients |
+                              update_quadrature_points | update_JxW_values);
+    FEFaceValues<dim>     fe_face(*mapping,
+                              fe,
+                              face_quadrature,
+                              update_values | update_quadrature_points |
+                                update_JxW_values | update_normal_vectors);
 
     const unsigned int n = fe.n_dofs_per_cell(), nq = quadrature.size();
     FullMatrix<double> cell_matrix(n, n);
     Vector<double>     cell_rhs(n);
     std::vector<types::global_dof_index> dofs(n);
-    std::vector<Tensor<2, dim>> grads(nq);
-    std::vector<Tensor<1, dim>> values(nq);
-    const FEValuesExtractors::Vector u(0);
+    std::vector<Tensor<2, dim>>          grads(nq);
+    std::vector<Tensor<1, dim>>          values(nq);
+    const FEValuesExtractors::Vector     u(0);
 
     std::vector<std::unique_ptr<Material>> materials;
     for (unsigned int b = 0; b < scene.bodies.size(); ++b)
@@ -378,8 +408,8 @@ namespace glide
         if (!cell->is_locally_owned())
           continue;
         fe_values.reinit(cell);
-        cell_matrix = 0;
-        cell_rhs    = 0;
+        cell_matrix   = 0;
+        cell_rhs      = 0;
         Material &law = *materials[cell->material_id()];
         fe_values[u].get_function_gradients(U_ghost, grads);
         if (axisymmetric)
@@ -390,8 +420,11 @@ namespace glide
           {
             const Point<dim> &x = fe_values.quadrature_point(q);
             const double      r = x[0];
-            const double      w = fe_values.JxW(q) * (axisymmetric ? 2 * numbers::PI * r : 1.);
-            law.evaluate(embed<dim>(grads[q], axisymmetric ? values[q][0] / r : 0.), P);
+            const double      w =
+              fe_values.JxW(q) * (axisymmetric ? 2 * numbers::PI * r : 1.);
+            law.evaluate(embed<dim>(grads[q],
+                                    axisymmetric ? values[q][0] / r : 0.),
+                         P);
 
             Tensor<1, dim> b;
             if (exact)
@@ -408,7 +441,7 @@ namespace glide
                 const unsigned int   c    = component[k];
                 const Tensor<1, dim> dphi = fe_values.shape_grad(k, q);
                 const double         phi  = fe_values.shape_value(k, q);
-                const double         hoop = (axisymmetric && c == 0) ? phi / r : 0.;
+                const double hoop = (axisymmetric && c == 0) ? phi / r : 0.;
                 if (F)
                   {
                     double v = 0;
@@ -458,9 +491,12 @@ namespace glide
                     for (unsigned int q = 0; q < face_quadrature.size(); ++q)
                       {
                         const Point<dim> &x = fe_face.quadrature_point(q);
-                        const double      w = fe_face.JxW(q) * (axisymmetric ? 2 * numbers::PI * x[0] : 1.);
-                        Tensor<1, dim>    tr;
-                        if (l.parameters->type == BoundaryConditionType::pressure)
+                        const double      w =
+                          fe_face.JxW(q) *
+                          (axisymmetric ? 2 * numbers::PI * x[0] : 1.);
+                        Tensor<1, dim> tr;
+                        if (l.parameters->type ==
+                            BoundaryConditionType::pressure)
                           tr = -l.function->value(x) * fe_face.normal_vector(q);
                         else
                           {
@@ -469,13 +505,15 @@ namespace glide
                               tr[d] = load[d];
                           }
                         for (unsigned int k = 0; k < n; ++k)
-                          cell_rhs(k) -= tr[component[k]] * fe_face.shape_value(k, q) * w;
+                          cell_rhs(k) -=
+                            tr[component[k]] * fe_face.shape_value(k, q) * w;
                       }
                   }
 
         cell->get_dof_indices(dofs);
         if (F && J)
-          constraints.distribute_local_to_global(cell_matrix, cell_rhs, dofs, *J, *F);
+          constraints.distribute_local_to_global(
+            cell_matrix, cell_rhs, dofs, *J, *F);
         else if (F)
           constraints.distribute_local_to_global(cell_rhs, dofs, *F);
         else
@@ -490,7 +528,8 @@ namespace glide
           for (const auto &[node_dofs, x] : pf.nodes)
             {
               pf.function->vector_value(x, load);
-              std::vector<types::global_dof_index> idx(node_dofs.begin(), node_dofs.end());
+              std::vector<types::global_dof_index> idx(node_dofs.begin(),
+                                                       node_dofs.end());
               Vector<double>                       f(dim);
               for (unsigned int d = 0; d < dim; ++d)
                 f[d] = -load[d];
@@ -518,7 +557,8 @@ namespace glide
         const std::string &name = d.parameters->name;
         // Only the components this condition constrains.
         const ComponentMask mask = component_mask(*d.parameters);
-        const IndexSet      dofs = DoFTools::extract_boundary_dofs(dof_handler, mask, d.ids);
+        const IndexSet      dofs =
+          DoFTools::extract_boundary_dofs(dof_handler, mask, d.ids);
         Tensor<1, dim>                       sum;
         std::vector<types::global_dof_index> local_dofs(fe.n_dofs_per_cell());
         std::set<types::global_dof_index>    counted;
@@ -527,9 +567,11 @@ namespace glide
             {
               cell->get_dof_indices(local_dofs);
               for (unsigned int i = 0; i < local_dofs.size(); ++i)
-                if (owned.is_element(local_dofs[i]) && dofs.is_element(local_dofs[i]) &&
+                if (owned.is_element(local_dofs[i]) &&
+                    dofs.is_element(local_dofs[i]) &&
                     counted.insert(local_dofs[i]).second)
-                  sum[fe.system_to_component_index(i).first] += F(local_dofs[i]);
+                  sum[fe.system_to_component_index(i).first] +=
+                    F(local_dofs[i]);
             }
         result[name] = Utilities::MPI::sum(sum, comm);
       }
@@ -545,10 +587,27 @@ namespace glide
     U_ghost = U;
     Vector<float>     cellwise(triangulation.n_active_cells());
     const QGauss<dim> q(scene.degree + 2);
-    VectorTools::integrate_difference(*mapping, dof_handler, U_ghost, *exact, cellwise, q, VectorTools::L2_norm);
-    const double l2 = VectorTools::compute_global_error(triangulation, cellwise, VectorTools::L2_norm);
-    VectorTools::integrate_difference(*mapping, dof_handler, U_ghost, *exact, cellwise, q, VectorTools::H1_seminorm);
-    const double h1 = VectorTools::compute_global_error(triangulation, cellwise, VectorTools::H1_seminorm);
+    VectorTools::integrate_difference(*mapping,
+                                      dof_handler,
+                                      U_ghost,
+                                      *exact,
+                                      cellwise,
+                                      q,
+                                      VectorTools::L2_norm);
+    const double l2 = VectorTools::compute_global_error(triangulation,
+                                                        cellwise,
+                                                        VectorTools::L2_norm);
+    VectorTools::integrate_difference(*mapping,
+                                      dof_handler,
+                                      U_ghost,
+                                      *exact,
+                                      cellwise,
+                                      q,
+                                      VectorTools::H1_seminorm);
+    const double h1 =
+      VectorTools::compute_global_error(triangulation,
+                                        cellwise,
+                                        VectorTools::H1_seminorm);
     return {l2, h1};
   }
 
@@ -556,9 +615,9 @@ namespace glide
   std::vector<VectorType>
   Elasticity<dim>::rigid_body_modes() const
   {
-    const unsigned int n_modes = axisymmetric ? dim : dim * (dim + 1) / 2;
+    const unsigned int      n_modes = axisymmetric ? dim : dim * (dim + 1) / 2;
     std::vector<VectorType> modes(n_modes, VectorType(owned, comm));
-    const auto &points = fe.get_unit_support_points();
+    const auto             &points = fe.get_unit_support_points();
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -568,7 +627,8 @@ namespace glide
             if (owned.is_element(dofs[i]))
               {
                 const unsigned int c = fe.system_to_component_index(i).first;
-                const Point<dim>   x = mapping->transform_unit_to_real_cell(cell, points[i]);
+                const Point<dim>   x =
+                  mapping->transform_unit_to_real_cell(cell, points[i]);
                 modes[c](dofs[i]) = 1.;
                 if (axisymmetric)
                   continue;
@@ -599,13 +659,19 @@ namespace glide
   Elasticity<dim>::active_effects() const
   {
     std::vector<std::string> e;
-    e.push_back(std::string(scene.geometric_nonlinearity ? "finite-strain neo-Hookean" : "small-strain linear elastic") +
-                " bodies (" + scene.analysis_name() + ", Q" + std::to_string(scene.degree) + ")");
+    e.push_back(std::string(scene.geometric_nonlinearity ?
+                              "finite-strain neo-Hookean" :
+                              "small-strain linear elastic") +
+                " bodies (" + scene.analysis_name() + ", Q" +
+                std::to_string(scene.degree) + ")");
     if (!dirichlet.empty() || axisymmetric)
-      e.push_back("prescribed displacements" + std::string(axisymmetric ? " (with u_r = 0 on the axis)" : ""));
+      e.push_back(
+        "prescribed displacements" +
+        std::string(axisymmetric ? " (with u_r = 0 on the axis)" : ""));
     bool traction = false, pressure = false;
     for (const auto &l : surface_loads)
-      (l.parameters->type == BoundaryConditionType::pressure ? pressure : traction) = true;
+      (l.parameters->type == BoundaryConditionType::pressure ? pressure :
+                                                               traction) = true;
     if (traction)
       e.push_back("surface tractions");
     if (pressure)
@@ -618,10 +684,13 @@ namespace glide
           e.push_back("body forces");
           break;
         }
-    if (symmetry_ids[0].size() + symmetry_ids[1].size() + symmetry_ids[2].size() > 0)
+    if (symmetry_ids[0].size() + symmetry_ids[1].size() +
+          symmetry_ids[2].size() >
+        0)
       e.push_back("symmetry conditions");
     if (exact)
-      e.push_back("manufactured solution (" + scene.manufactured_solution + ")");
+      e.push_back("manufactured solution (" + scene.manufactured_solution +
+                  ")");
     return e;
   }
 

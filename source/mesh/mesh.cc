@@ -31,20 +31,21 @@ namespace glide
     /// the circle/sphere/cylinder of radius r get the ids in @p radii.
     template <int dim>
     void
-    label_round_boundary(Triangulation<dim> &                       tria,
-                         const Point<dim> &                         center,
-                         const std::vector<std::pair<double, types::boundary_id>> &radii,
-                         const std::vector<std::pair<unsigned int, types::boundary_id>> &planes,
-                         const double                               length,
-                         const bool                                 axis_is_z)
+    label_round_boundary(
+      Triangulation<dim>                                             &tria,
+      const Point<dim>                                               &center,
+      const std::vector<std::pair<double, types::boundary_id>>       &radii,
+      const std::vector<std::pair<unsigned int, types::boundary_id>> &planes,
+      const double                                                    length,
+      const bool                                                      axis_is_z)
     {
       const double tol = 1e-6 * radii.back().first;
       for (const auto &cell : tria.active_cell_iterators())
         for (const auto &face : cell->face_iterators())
           if (face->at_boundary())
             {
-              const Point<dim> p = face->center(/*respect_manifold=*/true);
-              Tensor<1, dim>   r = p - center;
+              const Point<dim> p    = face->center(/*respect_manifold=*/true);
+              Tensor<1, dim>   r    = p - center;
               bool             done = false;
               if (dim == 3 && axis_is_z)
                 {
@@ -78,7 +79,7 @@ namespace glide
 
     template <int dim>
     void
-    set_curved_faces(Triangulation<dim> &tria,
+    set_curved_faces(Triangulation<dim>                 &tria,
                      const std::set<types::boundary_id> &curved)
     {
       tria.set_all_manifold_ids(numbers::flat_manifold_id);
@@ -92,7 +93,9 @@ namespace glide
     /// half (y <= center_y).
     template <int dim>
     void
-    make_cylinder(const MeshParameters &m, Triangulation<dim> &tria, const bool half)
+    make_cylinder(const MeshParameters &m,
+                  Triangulation<dim>   &tria,
+                  const bool            half)
     {
       const Point<dim> c = to_point<dim>(m.center);
       Triangulation<2> disk;
@@ -111,8 +114,8 @@ namespace glide
         tria.copy_triangulation(disk);
       else
         {
-          const unsigned int slices =
-            std::max(2u, static_cast<unsigned int>(std::round(m.length / m.radius)) + 1);
+          const unsigned int slices = std::max(
+            2u, static_cast<unsigned int>(std::round(m.length / m.radius)) + 1);
           Triangulation<2> flat;
           flat.copy_triangulation(disk);
           GridGenerator::extrude_triangulation(flat, slices, m.length, tria);
@@ -121,13 +124,15 @@ namespace glide
           GridTools::shift(shift, tria);
         }
       // ids: 0 curved/outer, 1 flat (cut plane y = c_y), 10 bottom, 11 top
-      label_round_boundary<dim>(tria,
-                                c,
-                                {{m.radius, 0}},
-                                half ? std::vector<std::pair<unsigned int, types::boundary_id>>{{1, 1}} :
-                                       std::vector<std::pair<unsigned int, types::boundary_id>>{},
-                                m.length,
-                                true);
+      label_round_boundary<dim>(
+        tria,
+        c,
+        {{m.radius, 0}},
+        half ?
+          std::vector<std::pair<unsigned int, types::boundary_id>>{{1, 1}} :
+          std::vector<std::pair<unsigned int, types::boundary_id>>{},
+        m.length,
+        true);
       set_curved_faces(tria, {0});
       if constexpr (dim == 2)
         tria.set_manifold(0, SphericalManifold<2>(c));
@@ -172,9 +177,9 @@ namespace glide
 
   template <int dim>
   void
-  build_body_mesh(const MeshParameters &                     m,
-                  const std::string &                        body_name,
-                  Triangulation<dim> &                       tria,
+  build_body_mesh(const MeshParameters                      &m,
+                  const std::string                         &body_name,
+                  Triangulation<dim>                        &tria,
                   std::map<types::boundary_id, std::string> &names)
   {
     const Point<dim> c = to_point<dim>(m.center);
@@ -212,10 +217,14 @@ namespace glide
           GridGenerator::hyper_shell(tria, c, m.inner_radius, m.radius);
         else
           {
-            GridGenerator::cylinder_shell(tria, m.length, m.inner_radius, m.radius);
+            GridGenerator::cylinder_shell(tria,
+                                          m.length,
+                                          m.inner_radius,
+                                          m.radius);
             GridTools::shift(Tensor<1, dim>(c), tria);
           }
-        label_round_boundary<dim>(tria, c, {{m.inner_radius, 0}, {m.radius, 1}}, {}, m.length, true);
+        label_round_boundary<dim>(
+          tria, c, {{m.inner_radius, 0}, {m.radius, 1}}, {}, m.length, true);
         tria.set_all_manifold_ids(0);
         if constexpr (dim == 2)
           tria.set_manifold(0, SphericalManifold<2>(c));
@@ -250,9 +259,9 @@ namespace glide
       }
     else if (m.type == "file")
       {
-        GridIn<dim> grid_in(tria);
+        GridIn<dim>   grid_in(tria);
         std::ifstream in(m.file);
-        const bool msh = m.file.substr(m.file.size() - 4) == ".msh";
+        const bool    msh = m.file.substr(m.file.size() - 4) == ".msh";
         try
           {
             if (msh)
@@ -264,9 +273,9 @@ namespace glide
           {
             std::ostringstream s;
             e.print_info(s);
-            throw InputError("Body '" + body_name + "': cannot read the mesh file '" +
-                             m.file + "' as a " + std::to_string(dim) +
-                             "D mesh: " + s.str());
+            throw InputError(
+              "Body '" + body_name + "': cannot read the mesh file '" + m.file +
+              "' as a " + std::to_string(dim) + "D mesh: " + s.str());
           }
         require(tria.n_active_cells() > 0,
                 "Body '" + body_name + "': the mesh file '" + m.file +
@@ -278,24 +287,26 @@ namespace glide
           names[id] = physical.count(id) ? physical[id] : std::to_string(id);
       }
     else
-      throw InputError("Body '" + body_name + "': unknown mesh type '" + m.type + "'.");
+      throw InputError("Body '" + body_name + "': unknown mesh type '" +
+                       m.type + "'.");
   }
 
 
 
   template <int dim>
   void
-  Mesh<dim>::build(const Scene &scene, parallel::distributed::Triangulation<dim> &tria)
+  Mesh<dim>::build(const Scene                               &scene,
+                   parallel::distributed::Triangulation<dim> &tria)
   {
-    std::vector<Point<dim>>    vertices;
-    std::vector<CellData<dim>> cells;
-    SubCellData                subcell;
-    types::boundary_id         next_id = 0;
+    std::vector<Point<dim>>                                      vertices;
+    std::vector<CellData<dim>>                                   cells;
+    SubCellData                                                  subcell;
+    types::boundary_id                                           next_id = 0;
     std::map<types::manifold_id, std::unique_ptr<Manifold<dim>>> manifolds;
 
     for (unsigned int b = 0; b < scene.bodies.size(); ++b)
       {
-        const auto &body = scene.bodies[b];
+        const auto                               &body = scene.bodies[b];
         Triangulation<dim>                        body_tria;
         std::map<types::boundary_id, std::string> names;
         build_body_mesh<dim>(body.mesh, body.name, body_tria, names);
@@ -310,7 +321,8 @@ namespace glide
         const types::manifold_id manifold_offset = 10 * b;
         for (const auto id : body_tria.get_manifold_ids())
           if (id != numbers::flat_manifold_id)
-            manifolds[id + manifold_offset] = body_tria.get_manifold(id).clone();
+            manifolds[id + manifold_offset] =
+              body_tria.get_manifold(id).clone();
         auto manifold = [&](const types::manifold_id id) {
           return id == numbers::flat_manifold_id ? id : id + manifold_offset;
         };
@@ -335,13 +347,14 @@ namespace glide
             for (const auto &face : cell->face_iterators())
               {
                 const bool boundary = face->at_boundary();
-                if (!boundary && face->manifold_id() == numbers::flat_manifold_id)
+                if (!boundary &&
+                    face->manifold_id() == numbers::flat_manifold_id)
                   continue;
                 CellData<dim - 1> f(face->n_vertices());
                 for (unsigned int v = 0; v < face->n_vertices(); ++v)
                   f.vertices[v] = new_vertex[face->vertex_index(v)];
-                f.boundary_id =
-                  boundary ? new_id.at(face->boundary_id()) : numbers::internal_face_boundary_id;
+                f.boundary_id = boundary ? new_id.at(face->boundary_id()) :
+                                           numbers::internal_face_boundary_id;
                 f.manifold_id = manifold(face->manifold_id());
                 if constexpr (dim == 2)
                   subcell.boundary_lines.push_back(f);
@@ -349,13 +362,17 @@ namespace glide
                   {
                     subcell.boundary_quads.push_back(f);
                     for (unsigned int l = 0; l < face->n_lines(); ++l)
-                      if (face->line(l)->manifold_id() != numbers::flat_manifold_id)
+                      if (face->line(l)->manifold_id() !=
+                          numbers::flat_manifold_id)
                         {
                           CellData<1> line(2);
-                          line.vertices[0] = new_vertex[face->line(l)->vertex_index(0)];
-                          line.vertices[1] = new_vertex[face->line(l)->vertex_index(1)];
+                          line.vertices[0] =
+                            new_vertex[face->line(l)->vertex_index(0)];
+                          line.vertices[1] =
+                            new_vertex[face->line(l)->vertex_index(1)];
                           line.boundary_id = numbers::internal_face_boundary_id;
-                          line.manifold_id = manifold(face->line(l)->manifold_id());
+                          line.manifold_id =
+                            manifold(face->line(l)->manifold_id());
                           subcell.boundary_lines.push_back(line);
                         }
                   }
@@ -371,8 +388,9 @@ namespace glide
       {
         std::ostringstream s;
         e.print_info(s);
-        throw InputError("Cannot build the mesh of the scene: " + s.str() +
-                         " (check mesh files for inverted or distorted cells).");
+        throw InputError(
+          "Cannot build the mesh of the scene: " + s.str() +
+          " (check mesh files for inverted or distorted cells).");
       }
     for (const auto &[id, m] : manifolds)
       tria.set_manifold(id, *m);
@@ -429,15 +447,18 @@ namespace glide
                   point[1] -= m.radius;
                 }
               else
-                point = to_point<dim>(m.type == "block" ? m.lower_corner : m.center);
+                point =
+                  to_point<dim>(m.type == "block" ? m.lower_corner : m.center);
               if (m.refinement_point.empty() && m.type == "block")
                 for (unsigned int d = 0; d < dim; ++d)
                   point[d] = 0.5 * (m.lower_corner[d] + m.upper_corner[d]);
-              const double r0 = m.refinement_radius > 0 ? m.refinement_radius : 0.25 * size;
-              const double r  = r0 / std::pow(2., level);
-              Point<dim> nearest = point;
+              const double r0 =
+                m.refinement_radius > 0 ? m.refinement_radius : 0.25 * size;
+              const double r       = r0 / std::pow(2., level);
+              Point<dim>   nearest = point;
               if (dim == 3 && (m.type == "hertz" || m.type == "half cylinder"))
-                nearest[2] = cell->center()[2]; // refine along the line of contact
+                nearest[2] =
+                  cell->center()[2]; // refine along the line of contact
               if (cell->center().distance(nearest) < r + 0.5 * cell->diameter())
                 {
                   cell->set_refine_flag();
@@ -454,7 +475,8 @@ namespace glide
 
   template <int dim>
   const std::set<types::boundary_id> &
-  Mesh<dim>::surface(const std::string &name, const std::string &parameter) const
+  Mesh<dim>::surface(const std::string &name,
+                     const std::string &parameter) const
   {
     const auto it = surface_ids.find(name);
     require(it != surface_ids.end(),
@@ -484,7 +506,13 @@ namespace glide
   template class Mesh<2>;
   template class Mesh<3>;
   template void
-  build_body_mesh<2>(const MeshParameters &, const std::string &, Triangulation<2> &, std::map<types::boundary_id, std::string> &);
+  build_body_mesh<2>(const MeshParameters &,
+                     const std::string &,
+                     Triangulation<2> &,
+                     std::map<types::boundary_id, std::string> &);
   template void
-  build_body_mesh<3>(const MeshParameters &, const std::string &, Triangulation<3> &, std::map<types::boundary_id, std::string> &);
+  build_body_mesh<3>(const MeshParameters &,
+                     const std::string &,
+                     Triangulation<3> &,
+                     std::map<types::boundary_id, std::string> &);
 } // namespace glide

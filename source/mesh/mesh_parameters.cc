@@ -12,16 +12,17 @@ namespace glide
 
   namespace
   {
-    const std::map<std::string, std::string> default_of{{"Lower corner", "0, 0"},
-                                                        {"Upper corner", "1, 1"},
-                                                        {"Subdivisions", "1, 1"},
-                                                        {"Center", "0, 0"}};
+    const std::map<std::string, std::string> default_of{
+      {"Lower corner", "0, 0"},
+      {"Upper corner", "1, 1"},
+      {"Subdivisions", "1, 1"},
+      {"Center", "0, 0"}};
 
     /// Read a point; a 2D default left untouched in a 3D scene gets its
     /// third component from @p fill, so 3D scenes need not repeat defaults
     /// of shapes they do not use.
     std::vector<double>
-    get_point(ParameterHandler & prm,
+    get_point(ParameterHandler  &prm,
               const std::string &entry,
               const unsigned int dim,
               const double       fill)
@@ -36,7 +37,7 @@ namespace glide
     void
     require_size(const std::vector<double> &v,
                  const unsigned int         dim,
-                 const std::string &        path)
+                 const std::string         &path)
     {
       require(v.size() == dim,
               "Parameter '" + path + "' needs " + std::to_string(dim) +
@@ -140,7 +141,7 @@ namespace glide
   }
 
   void
-  MeshParameters::parse_parameters(ParameterHandler &prm,
+  MeshParameters::parse_parameters(ParameterHandler  &prm,
                                    const std::string &path,
                                    const std::string &scene_directory,
                                    const unsigned int dim)
@@ -160,8 +161,10 @@ namespace glide
                 "Parameter '" + path + "/Mesh file': cannot open '" + file +
                   "' (relative paths are taken relative to the scene "
                   "file).");
-        const bool msh = file.size() > 4 && file.substr(file.size() - 4) == ".msh";
-        const bool inp = file.size() > 4 && file.substr(file.size() - 4) == ".inp";
+        const bool msh =
+          file.size() > 4 && file.substr(file.size() - 4) == ".msh";
+        const bool inp =
+          file.size() > 4 && file.substr(file.size() - 4) == ".inp";
         require(msh || inp,
                 "Parameter '" + path + "/Mesh file' = '" + file +
                   "': only Gmsh '.msh' and Abaqus '.inp' files are read.");
@@ -192,7 +195,8 @@ namespace glide
     refinement_radius  = prm.get_double("Refinement radius");
     prm.leave_subsection();
 
-    require(radius > 0., "Parameter '" + path + "/Round shapes/Radius' must be > 0.");
+    require(radius > 0.,
+            "Parameter '" + path + "/Round shapes/Radius' must be > 0.");
     if (type == "ring")
       require(inner_radius > 0. && inner_radius < radius,
               "Parameter '" + path +

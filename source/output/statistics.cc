@@ -13,7 +13,8 @@ namespace glide
   {}
 
   void
-  Statistics::add_row(const std::vector<std::pair<std::string, std::string>> &row)
+  Statistics::add_row(
+    const std::vector<std::pair<std::string, std::string>> &row)
   {
     if (!writer)
       return;
@@ -21,7 +22,8 @@ namespace glide
       {
         out.open(filename);
         if (!out)
-          throw std::runtime_error("cannot write the statistics table '" + filename + "'");
+          throw std::runtime_error("cannot write the statistics table '" +
+                                   filename + "'");
         for (const auto &[name, value] : row)
           header.push_back(name);
         for (unsigned int i = 0; i < header.size(); ++i)

@@ -22,7 +22,8 @@ namespace glide
     public:
       explicit StressPostprocessor(const Elasticity<dim> &elasticity)
         : elasticity(elasticity)
-        , axisymmetric(elasticity.get_scene().analysis == AnalysisType::axisymmetric)
+        , axisymmetric(elasticity.get_scene().analysis ==
+                       AnalysisType::axisymmetric)
       {
         for (unsigned int b = 0; b < elasticity.get_scene().bodies.size(); ++b)
           laws.push_back(elasticity.material(b));
@@ -46,8 +47,11 @@ namespace glide
       get_data_component_interpretation() const override
       {
         std::vector<DataComponentInterpretation::DataComponentInterpretation> i(
-          2 * dim * dim, DataComponentInterpretation::component_is_part_of_tensor);
-        i.insert(i.end(), dim == 2 ? 3 : 1, DataComponentInterpretation::component_is_scalar);
+          2 * dim * dim,
+          DataComponentInterpretation::component_is_part_of_tensor);
+        i.insert(i.end(),
+                 dim == 2 ? 3 : 1,
+                 DataComponentInterpretation::component_is_scalar);
         return i;
       }
 
@@ -58,11 +62,12 @@ namespace glide
       }
 
       void
-      evaluate_vector_field(const DataPostprocessorInputs::Vector<dim> &inputs,
-                            std::vector<Vector<double>> &computed) const override
+      evaluate_vector_field(
+        const DataPostprocessorInputs::Vector<dim> &inputs,
+        std::vector<Vector<double>>                &computed) const override
       {
         const auto cell = inputs.template get_cell<dim>();
-        Material & law  = *laws[cell->material_id()];
+        Material  &law  = *laws[cell->material_id()];
         for (unsigned int q = 0; q < computed.size(); ++q)
           {
             Tensor2 H;
@@ -72,7 +77,7 @@ namespace glide
             if (dim == 2 && axisymmetric)
               {
                 const double r = inputs.evaluation_points[q][0];
-                H[2][2]        = r > 0 ? inputs.solution_values[q][0] / r : H[0][0];
+                H[2][2] = r > 0 ? inputs.solution_values[q][0] / r : H[0][0];
               }
             Tensor2 P;
             law.evaluate(H, P);
@@ -93,22 +98,23 @@ namespace glide
                 computed[q](k++) = E[2][2];
                 computed[q](k++) = sigma[2][2];
               }
-            const Tensor2 dev = sigma - (trace(sigma) / 3.) * unit_symmetric_tensor<3>();
-            computed[q](k++)  = std::sqrt(1.5 * scalar_product(dev, dev));
+            const Tensor2 dev =
+              sigma - (trace(sigma) / 3.) * unit_symmetric_tensor<3>();
+            computed[q](k++) = std::sqrt(1.5 * scalar_product(dev, dev));
           }
       }
 
     private:
-      const Elasticity<dim> &                 elasticity;
-      const bool                              axisymmetric;
+      const Elasticity<dim>                         &elasticity;
+      const bool                                     axisymmetric;
       mutable std::vector<std::unique_ptr<Material>> laws;
     };
   } // namespace
 
   template <int dim>
   VtuWriter<dim>::VtuWriter(const Elasticity<dim> &elasticity,
-                            const std::string &    directory,
-                            const std::string &    name)
+                            const std::string     &directory,
+                            const std::string     &name)
     : elasticity(elasticity)
     , directory(directory)
     , name(name)
@@ -116,24 +122,30 @@ namespace glide
 
   template <int dim>
   void
-  VtuWriter<dim>::write(const unsigned int step, const double time, const VectorType &U)
+  VtuWriter<dim>::write(const unsigned int step,
+                        const double       time,
+                        const VectorType  &U)
   {
     const auto &dof_handler = elasticity.get_dof_handler();
     const auto  comm        = elasticity.get_triangulation().get_communicator();
-    VectorType  U_ghost(elasticity.locally_owned(), elasticity.locally_relevant(), comm);
+    VectorType  U_ghost(elasticity.locally_owned(),
+                       elasticity.locally_relevant(),
+                       comm);
     U_ghost = U;
 
     DataOut<dim> data_out;
     data_out.attach_dof_handler(dof_handler);
-    data_out.add_data_vector(U_ghost,
-                             std::vector<std::string>(dim, "displacement"),
-                             DataOut<dim>::type_dof_data,
-                             std::vector<DataComponentInterpretation::DataComponentInterpretation>(
-                               dim, DataComponentInterpretation::component_is_part_of_vector));
+    data_out.add_data_vector(
+      U_ghost,
+      std::vector<std::string>(dim, "displacement"),
+      DataOut<dim>::type_dof_data,
+      std::vector<DataComponentInterpretation::DataComponentInterpretation>(
+        dim, DataComponentInterpretation::component_is_part_of_vector));
     StressPostprocessor<dim> stress(elasticity);
     data_out.add_data_vector(U_ghost, stress);
-    const auto &tria = elasticity.get_triangulation();
-    Vector<float> material(tria.n_active_cells()), subdomain(tria.n_active_cells());
+    const auto   &tria = elasticity.get_triangulation();
+    Vector<float> material(tria.n_active_cells()),
+      subdomain(tria.n_active_cells());
     for (const auto &cell : tria.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -143,7 +155,9 @@ namespace glide
     data_out.add_data_vector(material, "material_id");
     data_out.add_data_vector(subdomain, "subdomain");
     const unsigned int degree = elasticity.get_scene().degree;
-    data_out.build_patches(elasticity.get_mapping(), degree, DataOut<dim>::curved_inner_cells);
+    data_out.build_patches(elasticity.get_mapping(),
+                           degree,
+                           DataOut<dim>::curved_inner_cells);
 
     char number[16];
     std::snprintf(number, sizeof(number), "%04u", step);

@@ -24,7 +24,7 @@ namespace glide
       e.print_info(s);
       // deal.II formats its messages over several indented lines; make
       // them one line.
-      std::string text, word;
+      std::string        text, word;
       std::istringstream in(s.str());
       while (in >> word)
         text += (text.empty() ? "" : " ") + word;
@@ -43,7 +43,7 @@ namespace glide
 
     void
     check_names(const std::vector<std::string> &names,
-                const std::string &             parameter)
+                const std::string              &parameter)
     {
       std::set<std::string> seen;
       for (const auto &n : names)
@@ -51,7 +51,8 @@ namespace glide
           require(std::all_of(n.begin(),
                               n.end(),
                               [](const char c) {
-                                return std::isalnum(static_cast<unsigned char>(c)) ||
+                                return std::isalnum(
+                                         static_cast<unsigned char>(c)) ||
                                        c == '_' || c == '-';
                               }),
                   "Parameter '" + parameter + "': the name '" + n +
@@ -70,7 +71,7 @@ namespace glide
 
 
   void
-  Scene::declare_parameters(ParameterHandler &              prm,
+  Scene::declare_parameters(ParameterHandler               &prm,
                             const std::vector<std::string> &bodies,
                             const std::vector<std::string> &conditions,
                             const std::vector<std::string> &node_sets)
@@ -177,11 +178,11 @@ namespace glide
   {
     if (name.empty())
       name = prm.get("Scene name");
-    dimension = prm.get_integer("Dimension");
+    dimension           = prm.get_integer("Dimension");
     const std::string a = prm.get("Analysis type");
-    analysis = (a == "plane strain" ? AnalysisType::plane_strain :
-                a == "axisymmetric" ? AnalysisType::axisymmetric :
-                                      AnalysisType::three_dimensional);
+    analysis            = (a == "plane strain" ? AnalysisType::plane_strain :
+                           a == "axisymmetric" ? AnalysisType::axisymmetric :
+                                                 AnalysisType::three_dimensional);
     require(!(analysis == AnalysisType::three_dimensional && dimension != 3),
             "Scene '" + file +
               "': 'Analysis type = 3d' needs 'Dimension = 3'.");
@@ -249,7 +250,8 @@ namespace glide
         if (bc.type == BoundaryConditionType::force &&
             node_set_names.count(bc.surface) > 0)
           continue;
-        for (const auto &surface : Utilities::split_string_list(bc.surface, ','))
+        for (const auto &surface :
+             Utilities::split_string_list(bc.surface, ','))
           {
             const auto dot = surface.find('.');
             require(dot != std::string::npos,
@@ -274,8 +276,7 @@ namespace glide
     for (const auto &b : bodies)
       {
         b.mesh.check_sizes(dimension, "Body " + b.name);
-        if (analysis == AnalysisType::axisymmetric &&
-            b.mesh.type != "file")
+        if (analysis == AnalysisType::axisymmetric && b.mesh.type != "file")
           {
             // The axisymmetric meridian plane is x = r >= 0.
             const bool centered_shape = (b.mesh.type != "block");
@@ -300,7 +301,7 @@ namespace glide
 
 
   Scene
-  Scene::read(const std::string &             filename,
+  Scene::read(const std::string              &filename,
               const std::vector<std::string> &overrides)
   {
     Scene scene;
@@ -313,9 +314,8 @@ namespace glide
                 "directory).");
     }
     const auto slash = filename.rfind('/');
-    scene.directory =
-      (slash == std::string::npos ? std::string(".") :
-                                    filename.substr(0, slash));
+    scene.directory  = (slash == std::string::npos ? std::string(".") :
+                                                     filename.substr(0, slash));
     std::string stem =
       (slash == std::string::npos ? filename : filename.substr(slash + 1));
     if (const auto d = stem.rfind('.'); d != std::string::npos)
@@ -444,10 +444,9 @@ namespace glide
                        example_bodies,
                        example_conditions,
                        example_node_sets);
-    const auto style =
-      (format == "json" ? ParameterHandler::JSON :
-       format == "xml"  ? ParameterHandler::XML :
-                          ParameterHandler::PRM);
+    const auto style = (format == "json" ? ParameterHandler::JSON :
+                        format == "xml"  ? ParameterHandler::XML :
+                                           ParameterHandler::PRM);
     prm.print_parameters(out, style | ParameterHandler::KeepDeclarationOrder);
   }
 

@@ -9,7 +9,8 @@ namespace glide
 {
   using namespace dealii;
 
-  LinearSolver::LinearSolver(const LinearSolverParameters &parameters, MPI_Comm comm)
+  LinearSolver::LinearSolver(const LinearSolverParameters &parameters,
+                             MPI_Comm                      comm)
     : parameters(parameters)
     , comm(comm)
     , kind(parameters.type)
@@ -18,10 +19,13 @@ namespace glide
   LinearSolver::~LinearSolver() = default;
 
   std::string
-  LinearSolver::choose(const unsigned int dim, const types::global_dof_index n_dofs)
+  LinearSolver::choose(const unsigned int            dim,
+                       const types::global_dof_index n_dofs)
   {
     if (parameters.type == "automatic")
-      kind = (dim == 2 || n_dofs <= parameters.automatic_direct_limit) ? "direct" : "amg";
+      kind = (dim == 2 || n_dofs <= parameters.automatic_direct_limit) ?
+               "direct" :
+               "amg";
     else
       kind = parameters.type;
     return kind;
@@ -30,13 +34,15 @@ namespace glide
   std::string
   LinearSolver::description() const
   {
-    return kind == "direct" ? "direct (Amesos " + parameters.direct_solver + ")" :
-                              "GMRES with ML algebraic multigrid";
+    return kind == "direct" ?
+             "direct (Amesos " + parameters.direct_solver + ")" :
+             "GMRES with ML algebraic multigrid";
   }
 
   void
-  LinearSolver::initialize(const TrilinosWrappers::SparseMatrix &              A,
-                           const std::vector<TrilinosWrappers::MPI::Vector> &modes)
+  LinearSolver::initialize(
+    const TrilinosWrappers::SparseMatrix             &A,
+    const std::vector<TrilinosWrappers::MPI::Vector> &modes)
   {
     matrix = &A;
     if (kind == "direct")
@@ -44,7 +50,9 @@ namespace glide
         direct = std::make_unique<TrilinosWrappers::SolverDirect>(
           direct_control,
           TrilinosWrappers::SolverDirect::AdditionalData(
-            false, parameters.direct_solver == "MUMPS" ? "Amesos_Mumps" : "Amesos_Klu"));
+            false,
+            parameters.direct_solver == "MUMPS" ? "Amesos_Mumps" :
+                                                  "Amesos_Klu"));
         direct->initialize(A);
         return;
       }
@@ -59,7 +67,7 @@ namespace glide
     data.set_parameters(list, constant_modes, A);
     // Replace the constant modes by the rigid-body modes of elasticity.
     const auto &map = A.trilinos_matrix().RowMap();
-    null_space = std::make_unique<Epetra_MultiVector>(map, modes.size());
+    null_space      = std::make_unique<Epetra_MultiVector>(map, modes.size());
     for (unsigned int m = 0; m < modes.size(); ++m)
       for (int i = 0; i < map.NumMyElements(); ++i)
         (*null_space)[m][i] = modes[m][map.GID(i)];
@@ -72,7 +80,7 @@ namespace glide
 
   unsigned int
   LinearSolver::solve(const TrilinosWrappers::MPI::Vector &b,
-                      TrilinosWrappers::MPI::Vector &      x,
+                      TrilinosWrappers::MPI::Vector       &x,
                       const double                         relative_tolerance)
   {
     if (kind == "direct")
@@ -81,7 +89,9 @@ namespace glide
         return 1;
       }
     SolverControl control(parameters.maximum_iterations,
-                          std::max(1e-14, std::min(relative_tolerance, parameters.relative_tolerance)) *
+                          std::max(1e-14,
+                                   std::min(relative_tolerance,
+                                            parameters.relative_tolerance)) *
                             b.l2_norm());
     SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
       control, SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(100));
@@ -92,9 +102,10 @@ namespace glide
       }
     catch (const SolverControl::NoConvergence &e)
       {
-        throw std::runtime_error("the linear solver (GMRES with AMG) did not converge in " +
-                                 std::to_string(e.last_step) + " iterations (residual " +
-                                 std::to_string(e.last_residual) + ")");
+        throw std::runtime_error(
+          "the linear solver (GMRES with AMG) did not converge in " +
+          std::to_string(e.last_step) + " iterations (residual " +
+          std::to_string(e.last_residual) + ")");
       }
     return control.last_step();
   }

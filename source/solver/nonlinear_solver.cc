@@ -9,25 +9,27 @@ namespace glide
 {
   using namespace dealii;
 
-  NonlinearSolver::NonlinearSolver(const NonlinearSolverParameters &parameters, MPI_Comm comm)
+  NonlinearSolver::NonlinearSolver(const NonlinearSolverParameters &parameters,
+                                   MPI_Comm                         comm)
     : parameters(parameters)
     , comm(comm)
   {}
 
   NonlinearSolver::Result
-  NonlinearSolver::solve(VectorType &     U,
+  NonlinearSolver::solve(VectorType      &U,
                          const Callbacks &cb,
                          const double     residual_scale,
                          const double     solution_scale)
   {
     using KINSOL = SUNDIALS::KINSOL<VectorType>;
-    typename KINSOL::AdditionalData data(
-      parameters.strategy == "newton" ? KINSOL::AdditionalData::newton : KINSOL::AdditionalData::linesearch,
-      parameters.maximum_iterations,
-      parameters.tolerance,
-      /*step_tolerance=*/1e-14,
-      /*no_init_setup=*/false,
-      parameters.maximum_setup_calls);
+    typename KINSOL::AdditionalData data(parameters.strategy == "newton" ?
+                                           KINSOL::AdditionalData::newton :
+                                           KINSOL::AdditionalData::linesearch,
+                                         parameters.maximum_iterations,
+                                         parameters.tolerance,
+                                         /*step_tolerance=*/1e-14,
+                                         /*no_init_setup=*/false,
+                                         parameters.maximum_setup_calls);
     KINSOL kinsol(data, comm);
 
     Result      result;
@@ -53,7 +55,8 @@ namespace glide
           return 1;
         }
     };
-    kinsol.setup_jacobian = [&](const VectorType &u, const VectorType &F) -> int {
+    kinsol.setup_jacobian = [&](const VectorType &u,
+                                const VectorType &F) -> int {
       try
         {
           cb.report(result.iterations, F.linfty_norm() * residual_scale);
@@ -67,7 +70,8 @@ namespace glide
           return -1;
         }
     };
-    kinsol.solve_with_jacobian = [&](const VectorType &rhs, VectorType &dst, const double) -> int {
+    kinsol.solve_with_jacobian =
+      [&](const VectorType &rhs, VectorType &dst, const double) -> int {
       try
         {
           result.linear_iterations += cb.solve_jacobian(rhs, dst);
@@ -119,11 +123,12 @@ namespace glide
           s << failure;
         else if (result.iterations >= parameters.maximum_iterations)
           s << "no convergence in " << parameters.maximum_iterations
-            << " Newton iterations (scaled residual " << result.residual_norm << " > tolerance "
-            << parameters.tolerance << ")";
+            << " Newton iterations (scaled residual " << result.residual_norm
+            << " > tolerance " << parameters.tolerance << ")";
         else
-          s << "KINSOL stopped with scaled residual " << result.residual_norm << " > tolerance "
-            << parameters.tolerance << " (line search or step tolerance)";
+          s << "KINSOL stopped with scaled residual " << result.residual_norm
+            << " > tolerance " << parameters.tolerance
+            << " (line search or step tolerance)";
         result.message = s.str();
         U              = guess;
       }

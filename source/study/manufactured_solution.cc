@@ -21,12 +21,12 @@ namespace glide
       G(const double x, const double y)
       {
         const double k = pi / 2;
-        v  = A * std::sin(pi * y) * std::cos(k * x);
-        r  = -A * k * std::sin(pi * y) * std::sin(k * x);
-        z  = A * pi * std::cos(pi * y) * std::cos(k * x);
-        rr = -A * k * k * std::sin(pi * y) * std::cos(k * x);
-        rz = -A * k * pi * std::cos(pi * y) * std::sin(k * x);
-        zz = -A * pi * pi * std::sin(pi * y) * std::cos(k * x);
+        v              = A * std::sin(pi * y) * std::cos(k * x);
+        r              = -A * k * std::sin(pi * y) * std::sin(k * x);
+        z              = A * pi * std::cos(pi * y) * std::cos(k * x);
+        rr             = -A * k * k * std::sin(pi * y) * std::cos(k * x);
+        rz             = -A * k * pi * std::cos(pi * y) * std::sin(k * x);
+        zz             = -A * pi * pi * std::sin(pi * y) * std::cos(k * x);
       }
     };
 
@@ -38,13 +38,14 @@ namespace glide
       W(const double x, const double y)
       {
         const double k = pi / 2;
-        v  = B * std::cos(pi * x) * std::sin(k * y);
-        r  = -B * pi * std::sin(pi * x) * std::sin(k * y);
-        z  = B * k * std::cos(pi * x) * std::cos(k * y);
-        rr = -B * pi * pi * std::cos(pi * x) * std::sin(k * y);
-        rz = -B * pi * k * std::sin(pi * x) * std::cos(k * y);
-        zz = -B * k * k * std::cos(pi * x) * std::sin(k * y);
-        const double sinc = (std::abs(pi * x) < 1e-8) ? 1. : std::sin(pi * x) / (pi * x);
+        v              = B * std::cos(pi * x) * std::sin(k * y);
+        r              = -B * pi * std::sin(pi * x) * std::sin(k * y);
+        z              = B * k * std::cos(pi * x) * std::cos(k * y);
+        rr             = -B * pi * pi * std::cos(pi * x) * std::sin(k * y);
+        rz             = -B * pi * k * std::sin(pi * x) * std::cos(k * y);
+        zz             = -B * k * k * std::cos(pi * x) * std::sin(k * y);
+        const double sinc =
+          (std::abs(pi * x) < 1e-8) ? 1. : std::sin(pi * x) / (pi * x);
         r_over_r = -B * pi * pi * sinc * std::sin(k * y);
       }
     };
@@ -59,7 +60,9 @@ namespace glide
     , lambda(lambda)
     , mu(mu)
   {
-    const double waves[3][3] = {{1.0, 0.5, 0.3}, {0.4, 1.2, 0.7}, {0.6, 0.2, 1.1}};
+    const double waves[3][3] = {{1.0, 0.5, 0.3},
+                                {0.4, 1.2, 0.7},
+                                {0.6, 0.2, 1.1}};
     for (unsigned int c = 0; c < 3; ++c)
       {
         for (unsigned int d = 0; d < dim; ++d)
@@ -71,7 +74,8 @@ namespace glide
 
   template <int dim>
   double
-  ManufacturedSolution<dim>::value(const Point<dim> &p, const unsigned int c) const
+  ManufacturedSolution<dim>::value(const Point<dim>  &p,
+                                   const unsigned int c) const
   {
     if (axisymmetric)
       return c == 0 ? p[0] * G(p[0], p[1]).v : W(p[0], p[1]).v;
@@ -80,7 +84,8 @@ namespace glide
 
   template <int dim>
   Tensor<1, dim>
-  ManufacturedSolution<dim>::gradient(const Point<dim> &p, const unsigned int c) const
+  ManufacturedSolution<dim>::gradient(const Point<dim>  &p,
+                                      const unsigned int c) const
   {
     Tensor<1, dim> g;
     if (axisymmetric)
@@ -104,7 +109,8 @@ namespace glide
 
   template <int dim>
   Tensor<2, dim>
-  ManufacturedSolution<dim>::second_derivatives(const Point<dim> &p, const unsigned int c) const
+  ManufacturedSolution<dim>::second_derivatives(const Point<dim>  &p,
+                                                const unsigned int c) const
   {
     Tensor<2, dim> h;
     if (axisymmetric)
@@ -114,18 +120,19 @@ namespace glide
             const G g(p[0], p[1]);
             h[0][0] = 2 * g.r + p[0] * g.rr;
             h[0][1] = h[1][0] = g.z + p[0] * g.rz;
-            h[1][1] = p[0] * g.zz;
+            h[1][1]           = p[0] * g.zz;
           }
         else
           {
             const W w(p[0], p[1]);
             h[0][0] = w.rr;
             h[0][1] = h[1][0] = w.rz;
-            h[1][1] = w.zz;
+            h[1][1]           = w.zz;
           }
         return h;
       }
-    return -amplitude[c] * std::sin(wave[c] * p + phase[c]) * outer_product(wave[c], wave[c]);
+    return -amplitude[c] * std::sin(wave[c] * p + phase[c]) *
+           outer_product(wave[c], wave[c]);
   }
 
   template <int dim>
@@ -139,13 +146,13 @@ namespace glide
         //   d(s_rr)/dr + d(s_rz)/dz + (s_rr - s_tt)/r + b_r = 0,
         //   d(s_rz)/dr + d(s_zz)/dz + s_rz/r + b_z = 0,
         // written out for u_r = r g, u_z = w (see the class documentation).
-        const G g(p[0], p[1]);
-        const W w(p[0], p[1]);
+        const G      g(p[0], p[1]);
+        const W      w(p[0], p[1]);
         const double r = p[0];
-        b[0] = -(lambda * (3 * g.r + r * g.rr + w.rz) +
+        b[0]           = -(lambda * (3 * g.r + r * g.rr + w.rz) +
                  2 * mu * (2 * g.r + r * g.rr) + mu * (r * g.zz + w.rz) +
                  2 * mu * g.r);
-        b[1] = -(mu * (g.z + r * g.rz + w.rr) +
+        b[1]           = -(mu * (g.z + r * g.rz + w.rr) +
                  lambda * (2 * g.z + r * g.rz + w.zz) + 2 * mu * w.zz +
                  mu * (g.z + w.r_over_r));
         return b;

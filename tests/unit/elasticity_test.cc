@@ -9,12 +9,11 @@
 
 #include <deal.II/base/timer.h>
 
+#include "test_helpers.h"
 #include <gtest/gtest.h>
 
 #include <random>
 #include <sstream>
-
-#include "test_helpers.h"
 
 using namespace dealii;
 using namespace glide;
@@ -24,17 +23,21 @@ namespace
   std::string
   scene_text(const std::string &analysis, const unsigned int degree)
   {
-    const bool        three = analysis == "3d";
+    const bool         three = analysis == "3d";
     std::ostringstream s;
-    s << "set Dimension = " << (three ? 3 : 2) << "\nset Analysis type = " << analysis << "\n"
+    s << "set Dimension = " << (three ? 3 : 2)
+      << "\nset Analysis type = " << analysis << "\n"
       << "set Boundary conditions = hold, load\n"
       << "subsection Discretization\n  set Element degree = " << degree
       << "\n  set Geometric nonlinearity = true\nend\n"
       << "subsection Body body\n  subsection Block\n    set Lower corner = "
-      << (three ? "0, 0, 0" : "0.2, 0") << "\n    set Upper corner = " << (three ? "1, 1, 1" : "1.2, 1")
-      << "\n    set Subdivisions = " << (three ? "2, 1, 1" : "2, 2") << "\n  end\n"
+      << (three ? "0, 0, 0" : "0.2, 0")
+      << "\n    set Upper corner = " << (three ? "1, 1, 1" : "1.2, 1")
+      << "\n    set Subdivisions = " << (three ? "2, 1, 1" : "2, 2")
+      << "\n  end\n"
       << "  subsection Refinement\n    set Local refinements = 1\n    set Refinement radius = 0.3\n"
-      << "    set Refinement point = " << (three ? "0, 0, 0" : "0.2, 0") << "\n  end\nend\n"
+      << "    set Refinement point = " << (three ? "0, 0, 0" : "0.2, 0")
+      << "\n  end\nend\n"
       << "subsection Boundary condition hold\n  set Surface = body.bottom\n  set Type = fixed\nend\n"
       << "subsection Boundary condition load\n  set Surface = body.top\n  set Type = pressure\n"
       << "  set Function = 0.1*t\nend\n";
@@ -45,8 +48,13 @@ namespace
   void
   check_jacobian(const std::string &analysis, const unsigned int degree)
   {
-    const Scene scene = Scene::read(glide_test::write_file("jacobian_" + analysis + ".prm", scene_text(analysis, degree)));
-    TimerOutput timer(MPI_COMM_WORLD, std::cout, TimerOutput::never, TimerOutput::wall_times);
+    const Scene scene =
+      Scene::read(glide_test::write_file("jacobian_" + analysis + ".prm",
+                                         scene_text(analysis, degree)));
+    TimerOutput     timer(MPI_COMM_WORLD,
+                      std::cout,
+                      TimerOutput::never,
+                      TimerOutput::wall_times);
     Elasticity<dim> e(scene, MPI_COMM_WORLD, timer);
     e.setup();
     // There are hanging nodes (local refinement), so the test also covers
@@ -55,7 +63,7 @@ namespace
 
     std::mt19937                           gen(42);
     std::uniform_real_distribution<double> dist(-0.005, 0.005);
-    VectorType                             U(e.locally_owned(), MPI_COMM_WORLD), v(U);
+    VectorType U(e.locally_owned(), MPI_COMM_WORLD), v(U);
     for (const auto i : e.locally_owned())
       {
         U[i] = dist(gen);
@@ -113,8 +121,12 @@ TEST(Elasticity, UnknownSurfaceIsAnInputError)
 {
   std::string text = scene_text("plane strain", 1);
   text.replace(text.find("body.top"), 8, "body.lid");
-  const Scene scene = Scene::read(glide_test::write_file("unknown_surface.prm", text));
-  TimerOutput timer(MPI_COMM_WORLD, std::cout, TimerOutput::never, TimerOutput::wall_times);
+  const Scene scene =
+    Scene::read(glide_test::write_file("unknown_surface.prm", text));
+  TimerOutput   timer(MPI_COMM_WORLD,
+                    std::cout,
+                    TimerOutput::never,
+                    TimerOutput::wall_times);
   Elasticity<2> e(scene, MPI_COMM_WORLD, timer);
   try
     {
@@ -124,9 +136,11 @@ TEST(Elasticity, UnknownSurfaceIsAnInputError)
   catch (const InputError &err)
     {
       const std::string m = err.what();
-      EXPECT_NE(m.find("Boundary condition load/Surface"), std::string::npos) << m;
+      EXPECT_NE(m.find("Boundary condition load/Surface"), std::string::npos)
+        << m;
       EXPECT_NE(m.find("body.lid"), std::string::npos) << m;
-      EXPECT_NE(m.find("body.top"), std::string::npos) << "lists known surfaces: " << m;
+      EXPECT_NE(m.find("body.top"), std::string::npos)
+        << "lists known surfaces: " << m;
     }
 }
 
@@ -134,8 +148,12 @@ TEST(Elasticity, BadExpressionIsAnInputError)
 {
   std::string text = scene_text("plane strain", 1);
   text.replace(text.find("0.1*t"), 5, "0.1*tt");
-  const Scene scene = Scene::read(glide_test::write_file("bad_expression.prm", text));
-  TimerOutput timer(MPI_COMM_WORLD, std::cout, TimerOutput::never, TimerOutput::wall_times);
+  const Scene scene =
+    Scene::read(glide_test::write_file("bad_expression.prm", text));
+  TimerOutput   timer(MPI_COMM_WORLD,
+                    std::cout,
+                    TimerOutput::never,
+                    TimerOutput::wall_times);
   Elasticity<2> e(scene, MPI_COMM_WORLD, timer);
   EXPECT_THROW(e.setup(), InputError);
 }

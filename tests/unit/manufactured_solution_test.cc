@@ -20,7 +20,9 @@ namespace
   /// Cauchy stress (3x3) of the exact solution at p.
   template <int dim>
   Tensor<2, 3>
-  stress(const ManufacturedSolution<dim> &u, const Point<dim> &p, const bool axisymmetric)
+  stress(const ManufacturedSolution<dim> &u,
+         const Point<dim>                &p,
+         const bool                       axisymmetric)
   {
     Tensor<2, 3> eps;
     for (unsigned int i = 0; i < dim; ++i)
@@ -46,7 +48,8 @@ namespace
         Point<dim> pp = p, pm = p;
         pp[j] += h;
         pm[j] -= h;
-        const auto sp = stress(u, pp, axisymmetric), sm = stress(u, pm, axisymmetric);
+        const auto sp = stress(u, pp, axisymmetric),
+                   sm = stress(u, pm, axisymmetric);
         for (unsigned int i = 0; i < dim; ++i)
           div[i] += (sp[i][j] - sm[i][j]) / (2 * h);
       }
@@ -99,6 +102,8 @@ TEST(ManufacturedSolution, GradientMatchesFiniteDifferences)
         Point<3> pp = p, pm = p;
         pp[d] += h;
         pm[d] -= h;
-        EXPECT_NEAR(u.gradient(p, c)[d], (u.value(pp, c) - u.value(pm, c)) / (2 * h), 1e-8);
+        EXPECT_NEAR(u.gradient(p, c)[d],
+                    (u.value(pp, c) - u.value(pm, c)) / (2 * h),
+                    1e-8);
       }
 }

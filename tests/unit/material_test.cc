@@ -14,8 +14,10 @@ namespace
   Tensor2
   sample_gradient(const double scale)
   {
-    Tensor2 H;
-    const double v[3][3] = {{0.11, -0.05, 0.02}, {0.07, -0.09, 0.04}, {-0.03, 0.06, 0.05}};
+    Tensor2      H;
+    const double v[3][3] = {{0.11, -0.05, 0.02},
+                            {0.07, -0.09, 0.04},
+                            {-0.03, 0.06, 0.05}};
     for (unsigned int i = 0; i < 3; ++i)
       for (unsigned int j = 0; j < 3; ++j)
         H[i][j] = scale * v[i][j];
@@ -40,7 +42,7 @@ namespace
           law.evaluate(H + eps * dH, Pp);
           law.evaluate(H - eps * dH, Pm);
           const Tensor2 fd = (Pp - Pm) / (2 * eps);
-          worst            = std::max(worst, (analytic - fd).norm() / (1. + fd.norm()));
+          worst = std::max(worst, (analytic - fd).norm() / (1. + fd.norm()));
         }
     return worst;
   }
@@ -105,4 +107,15 @@ TEST(Material, LameConstants)
   m.poissons_ratio = 0.3;
   EXPECT_NEAR(m.mu(), 1.0, 1e-14);
   EXPECT_NEAR(m.lambda(), 1.5, 1e-14);
+}
+
+TEST(Material, KinematicsChooseTheLaw)
+{
+  // P4.2: a geometrically linear scene gets the small-strain law, which
+  // never forms F, J or F^{-1}; only a nonlinear scene gets neo-Hookean.
+  MaterialParameters m;
+  EXPECT_FALSE(create_material(m, false)->finite_strain());
+  EXPECT_TRUE(create_material(m, true)->finite_strain());
+  EXPECT_NE(dynamic_cast<LinearElastic *>(create_material(m, false).get()),
+            nullptr);
 }

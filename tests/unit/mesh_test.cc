@@ -11,9 +11,8 @@
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/grid/grid_tools.h>
 
-#include <gtest/gtest.h>
-
 #include "test_helpers.h"
+#include <gtest/gtest.h>
 
 using namespace dealii;
 using namespace glide;
@@ -22,7 +21,9 @@ namespace
 {
   template <int dim>
   double
-  measure_after(const std::string &type, const unsigned int refinements, std::map<types::boundary_id, std::string> &names)
+  measure_after(const std::string                         &type,
+                const unsigned int                         refinements,
+                std::map<types::boundary_id, std::string> &names)
   {
     MeshParameters m;
     m.type         = type;
@@ -62,7 +63,9 @@ TEST(Mesh, RoundShapesFollowTheirManifolds)
   EXPECT_EQ(values(names), (std::set<std::string>{"curved", "x0", "y0"}));
   EXPECT_NEAR(measure_after<3>("cylinder", 3, names), pi * 4. * 3., 0.05);
   EXPECT_EQ(values(names), (std::set<std::string>{"outer", "bottom", "top"}));
-  EXPECT_NEAR(measure_after<3>("sphere octant", 3, names), 4. / 3. * pi * 8. / 8., 0.02);
+  EXPECT_NEAR(measure_after<3>("sphere octant", 3, names),
+              4. / 3. * pi * 8. / 8.,
+              0.02);
   EXPECT_EQ(values(names), (std::set<std::string>{"curved", "x0", "y0", "z0"}));
 }
 
@@ -103,14 +106,16 @@ subsection Body upper
   end
 end
 )";
-  const Scene scene = Scene::read(glide_test::write_file("mesh_two_bodies.prm", text));
+  const Scene       scene =
+    Scene::read(glide_test::write_file("mesh_two_bodies.prm", text));
   parallel::distributed::Triangulation<2> tria(MPI_COMM_WORLD);
   Mesh<2>                                 mesh;
   mesh.build(scene, tria);
   EXPECT_EQ(tria.n_global_active_cells(), 4u + 36u);
   EXPECT_TRUE(mesh.has_surface("lower.top"));
   EXPECT_TRUE(mesh.has_surface("upper.bottom"));
-  EXPECT_NE(*mesh.surface("lower.top", "x").begin(), *mesh.surface("upper.bottom", "x").begin());
+  EXPECT_NE(*mesh.surface("lower.top", "x").begin(),
+            *mesh.surface("upper.bottom", "x").begin());
   // The interface y = 1 is a boundary of both bodies: no shared vertices.
   unsigned int boundary_faces_on_interface = 0;
   for (const auto &cell : tria.active_cell_iterators())
@@ -125,7 +130,8 @@ end
     }
   catch (const InputError &e)
     {
-      EXPECT_NE(std::string(e.what()).find("upper.top"), std::string::npos) << "lists the known surfaces";
+      EXPECT_NE(std::string(e.what()).find("upper.top"), std::string::npos)
+        << "lists the known surfaces";
     }
 }
 
@@ -146,7 +152,8 @@ TEST(Mesh, UnreadableMeshFileIsAnInputError)
 {
   MeshParameters m;
   m.type = "file";
-  m.file = glide_test::write_file("broken.msh", "$MeshFormat\nthis is not gmsh\n");
+  m.file =
+    glide_test::write_file("broken.msh", "$MeshFormat\nthis is not gmsh\n");
   Triangulation<2>                          tria;
   std::map<types::boundary_id, std::string> names;
   EXPECT_THROW(build_body_mesh<2>(m, "slab", tria, names), InputError);

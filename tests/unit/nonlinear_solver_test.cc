@@ -17,10 +17,10 @@ namespace
 {
   struct Problem
   {
-    IndexSet                   owned{8};
+    IndexSet                    owned{8};
     NonlinearSolver::VectorType diagonal;
-    bool                       solvable = true;
-    unsigned int               reports  = 0;
+    bool                        solvable = true;
+    unsigned int                reports  = 0;
 
     Problem()
     {
@@ -31,19 +31,25 @@ namespace
     callbacks()
     {
       NonlinearSolver::Callbacks cb;
-      cb.reinit_vector = [this](NonlinearSolver::VectorType &v) { v.reinit(owned, MPI_COMM_WORLD); };
-      cb.residual      = [this](const NonlinearSolver::VectorType &x, NonlinearSolver::VectorType &F) {
+      cb.reinit_vector = [this](NonlinearSolver::VectorType &v) {
+        v.reinit(owned, MPI_COMM_WORLD);
+      };
+      cb.residual = [this](const NonlinearSolver::VectorType &x,
+                           NonlinearSolver::VectorType       &F) {
         for (unsigned int i = 0; i < 8; ++i)
-          F[i] = solvable ? x[i] * x[i] * x[i] + x[i] - (1. + i) : x[i] * x[i] + 1.;
+          F[i] =
+            solvable ? x[i] * x[i] * x[i] + x[i] - (1. + i) : x[i] * x[i] + 1.;
         F.compress(VectorOperation::insert);
       };
       cb.setup_jacobian = [this](const NonlinearSolver::VectorType &x) {
         diagonal.reinit(owned, MPI_COMM_WORLD);
         for (unsigned int i = 0; i < 8; ++i)
-          diagonal[i] = solvable ? 3 * x[i] * x[i] + 1. : 2 * x[i] + (x[i] == 0 ? 1e-3 : 0.);
+          diagonal[i] = solvable ? 3 * x[i] * x[i] + 1. :
+                                   2 * x[i] + (x[i] == 0 ? 1e-3 : 0.);
         diagonal.compress(VectorOperation::insert);
       };
-      cb.solve_jacobian = [this](const NonlinearSolver::VectorType &rhs, NonlinearSolver::VectorType &dx) {
+      cb.solve_jacobian = [this](const NonlinearSolver::VectorType &rhs,
+                                 NonlinearSolver::VectorType       &dx) {
         for (unsigned int i = 0; i < 8; ++i)
           dx[i] = rhs[i] / diagonal[i];
         dx.compress(VectorOperation::insert);
@@ -96,21 +102,23 @@ TEST(NonlinearSolver, ResidualScalingMakesToleranceUnitFree)
   unsigned int iterations[2];
   for (unsigned int k = 0; k < 2; ++k)
     {
-      Problem    p;
+      Problem      p;
       const double units = k == 0 ? 1. : 1e6;
-      auto       cb    = p.callbacks();
-      auto       plain = cb.residual;
-      cb.residual      = [&](const NonlinearSolver::VectorType &x, NonlinearSolver::VectorType &F) {
+      auto         cb    = p.callbacks();
+      auto         plain = cb.residual;
+      cb.residual        = [&](const NonlinearSolver::VectorType &x,
+                        NonlinearSolver::VectorType       &F) {
         plain(x, F);
         F *= units;
       };
       auto plain_solve  = cb.solve_jacobian;
-      cb.solve_jacobian = [&](const NonlinearSolver::VectorType &rhs, NonlinearSolver::VectorType &dx) {
+      cb.solve_jacobian = [&](const NonlinearSolver::VectorType &rhs,
+                              NonlinearSolver::VectorType       &dx) {
         NonlinearSolver::VectorType r = rhs;
         r /= units;
         return plain_solve(r, dx);
       };
-      NonlinearSolverParameters parameters;
+      NonlinearSolverParameters   parameters;
       NonlinearSolver             solver(parameters, MPI_COMM_WORLD);
       NonlinearSolver::VectorType x(p.owned, MPI_COMM_WORLD);
       const auto                  result = solver.solve(x, cb, 1. / units, 1.);

@@ -5,11 +5,10 @@
 #include <glide/scene/input_error.h>
 #include <glide/scene/scene.h>
 
+#include "test_helpers.h"
 #include <gtest/gtest.h>
 
 #include <sstream>
-
-#include "test_helpers.h"
 
 using namespace glide;
 
@@ -93,14 +92,16 @@ TEST(Scene, ReadsWhatTheFileSays)
 TEST(Scene, CommandLineOverrides)
 {
   const Scene s = Scene::read(glide_test::write_file("scene_valid.prm", valid),
-                              {"Discretization/Element degree=1", "Body puck/Material/Young's modulus=7"});
+                              {"Discretization/Element degree=1",
+                               "Body puck/Material/Young's modulus=7"});
   EXPECT_EQ(s.degree, 1u);
   EXPECT_DOUBLE_EQ(s.bodies[0].material.youngs_modulus, 7.);
 }
 
 TEST(Scene, MisspeltParameterNamesFileLineAndEntry)
 {
-  const auto m = error_of(replace(valid, "set Element degree", "set Element degre"));
+  const auto m =
+    error_of(replace(valid, "set Element degree", "set Element degre"));
   EXPECT_NE(m.find("scene_test.prm"), std::string::npos) << m;
   EXPECT_NE(m.find("Element degre"), std::string::npos) << m;
   EXPECT_NE(m.find("--print-parameters"), std::string::npos) << m;
@@ -108,44 +109,52 @@ TEST(Scene, MisspeltParameterNamesFileLineAndEntry)
 
 TEST(Scene, ValueOutOfRange)
 {
-  const auto m = error_of(replace(valid, "set Poisson's ratio = 0.25", "set Poisson's ratio = 0.7"));
+  const auto m = error_of(
+    replace(valid, "set Poisson's ratio = 0.25", "set Poisson's ratio = 0.7"));
   EXPECT_NE(m.find("Poisson's ratio"), std::string::npos) << m;
   EXPECT_NE(m.find("0.7"), std::string::npos) << m;
-  const auto d = error_of(replace(valid, "set Element degree = 2", "set Element degree = 3"));
+  const auto d = error_of(
+    replace(valid, "set Element degree = 2", "set Element degree = 3"));
   EXPECT_NE(d.find("Element degree"), std::string::npos) << d;
 }
 
 TEST(Scene, UnknownBodyInSurfaceName)
 {
-  const auto m = error_of(replace(valid, "set Surface = base.bottom", "set Surface = bse.bottom"));
+  const auto m = error_of(
+    replace(valid, "set Surface = base.bottom", "set Surface = bse.bottom"));
   EXPECT_NE(m.find("Boundary condition hold/Surface"), std::string::npos) << m;
   EXPECT_NE(m.find("no such body"), std::string::npos) << m;
 }
 
 TEST(Scene, SurfaceNameWithoutBody)
 {
-  const auto m = error_of(replace(valid, "set Surface = base.bottom", "set Surface = bottom"));
+  const auto m = error_of(
+    replace(valid, "set Surface = base.bottom", "set Surface = bottom"));
   EXPECT_NE(m.find("<body>.<surface>"), std::string::npos) << m;
 }
 
 TEST(Scene, AxisymmetricIn3DIsRejected)
 {
-  const auto m = error_of(replace(valid, "set Dimension = 2", "set Dimension = 3"));
+  const auto m =
+    error_of(replace(valid, "set Dimension = 2", "set Dimension = 3"));
   EXPECT_NE(m.find("axisymmetric"), std::string::npos) << m;
   EXPECT_NE(m.find("Dimension = 3"), std::string::npos) << m;
 }
 
 TEST(Scene, AxisymmetricBodyMustLieAtPositiveRadius)
 {
-  const auto m = error_of(replace(valid, "set Lower corner = 0, 1", "set Lower corner = -1, 1"));
+  const auto m = error_of(
+    replace(valid, "set Lower corner = 0, 1", "set Lower corner = -1, 1"));
   EXPECT_NE(m.find("Body 'puck'"), std::string::npos) << m;
   EXPECT_NE(m.find("r >= 0"), std::string::npos) << m;
 }
 
 TEST(Scene, MissingMeshFile)
 {
-  const auto m = error_of(replace(valid, "subsection Body base\n  set Mesh = block",
-                                  "subsection Body base\n  set Mesh = file\n  set Mesh file = nowhere.msh"));
+  const auto m = error_of(replace(
+    valid,
+    "subsection Body base\n  set Mesh = block",
+    "subsection Body base\n  set Mesh = file\n  set Mesh file = nowhere.msh"));
   EXPECT_NE(m.find("Body base/Mesh file"), std::string::npos) << m;
   EXPECT_NE(m.find("nowhere.msh"), std::string::npos) << m;
 }
@@ -159,25 +168,29 @@ TEST(Scene, MissingSceneFile)
     }
   catch (const InputError &e)
     {
-      EXPECT_NE(std::string(e.what()).find("does-not-exist.prm"), std::string::npos);
+      EXPECT_NE(std::string(e.what()).find("does-not-exist.prm"),
+                std::string::npos);
     }
 }
 
 TEST(Scene, WrongNumberOfFunctionComponents)
 {
-  const auto m = error_of(replace(valid, "set Function = 3*t", "set Function = 3*t; 0"));
+  const auto m =
+    error_of(replace(valid, "set Function = 3*t", "set Function = 3*t; 0"));
   EXPECT_NE(m.find("Boundary condition push/Function"), std::string::npos) << m;
 }
 
 TEST(Scene, ZsymmNeeds3D)
 {
-  const auto m = error_of(replace(valid, "set Type = YSYMM", "set Type = ZSYMM"));
+  const auto m =
+    error_of(replace(valid, "set Type = YSYMM", "set Type = ZSYMM"));
   EXPECT_NE(m.find("ZSYMM"), std::string::npos) << m;
 }
 
 TEST(Scene, DuplicateBodyNames)
 {
-  const auto m = error_of(replace(valid, "set Bodies = puck, base", "set Bodies = puck, puck"));
+  const auto m = error_of(
+    replace(valid, "set Bodies = puck, base", "set Bodies = puck, puck"));
   EXPECT_NE(m.find("twice"), std::string::npos) << m;
 }
 
@@ -185,7 +198,13 @@ TEST(Scene, PrintParametersDocumentsEverything)
 {
   std::ostringstream out;
   Scene::print_parameters(out, "prm");
-  for (const char *entry : {"Analysis type", "Element degree", "Geometric nonlinearity", "Young's modulus",
-                            "Mesh file", "Manufactured solution", "Maximum cut-backs", "Direct solver"})
+  for (const char *entry : {"Analysis type",
+                            "Element degree",
+                            "Geometric nonlinearity",
+                            "Young's modulus",
+                            "Mesh file",
+                            "Manufactured solution",
+                            "Maximum cut-backs",
+                            "Direct solver"})
     EXPECT_NE(out.str().find(entry), std::string::npos) << entry;
 }

@@ -19,8 +19,8 @@ namespace glide
    */
   struct MaterialParameters
   {
-    double youngs_modulus  = 1.;
-    double poissons_ratio  = 0.3;
+    double youngs_modulus = 1.;
+    double poissons_ratio = 0.3;
 
     double
     lambda() const;

@@ -48,7 +48,7 @@ namespace glide
     declare_parameters(dealii::ParameterHandler &prm);
     void
     parse_parameters(dealii::ParameterHandler &prm,
-                     const std::string &       name,
+                     const std::string        &name,
                      const unsigned int        dim);
   };
 
@@ -67,7 +67,7 @@ namespace glide
     declare_parameters(dealii::ParameterHandler &prm);
     void
     parse_parameters(dealii::ParameterHandler &prm,
-                     const std::string &       name,
+                     const std::string        &name,
                      const unsigned int        dim);
   };
 } // namespace glide

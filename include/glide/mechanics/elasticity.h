@@ -164,23 +164,25 @@ namespace glide
   private:
     struct Load
     {
-      const BoundaryConditionParameters *parameters;
-      std::set<dealii::types::boundary_id> ids;
+      const BoundaryConditionParameters           *parameters;
+      std::set<dealii::types::boundary_id>         ids;
       std::unique_ptr<dealii::FunctionParser<dim>> function;
     };
     struct PointForce
     {
       std::unique_ptr<dealii::FunctionParser<dim>> function;
       /// Vertex DoFs (locally owned) per component, with their positions.
-      std::vector<std::pair<std::array<dealii::types::global_dof_index, dim>, dealii::Point<dim>>> nodes;
+      std::vector<std::pair<std::array<dealii::types::global_dof_index, dim>,
+                            dealii::Point<dim>>>
+        nodes;
     };
 
     /// Residual and/or Jacobian, condensed with @p constraints.
     void
-    assemble(const VectorType &                       U,
+    assemble(const VectorType                        &U,
              const double                             t,
-             VectorType *                             F,
-             MatrixType *                             J,
+             VectorType                              *F,
+             MatrixType                              *J,
              const dealii::AffineConstraints<double> &constraints) const;
 
     /// The displacement components a Dirichlet condition prescribes.
@@ -188,25 +190,27 @@ namespace glide
     component_mask(const BoundaryConditionParameters &bc) const;
 
     std::unique_ptr<dealii::FunctionParser<dim>>
-    parse_function(const std::string &expression, const unsigned int n_components, const std::string &parameter) const;
+    parse_function(const std::string &expression,
+                   const unsigned int n_components,
+                   const std::string &parameter) const;
 
-    const Scene &                             scene;
-    MPI_Comm                                  comm;
-    dealii::TimerOutput &                     timer;
+    const Scene                                      &scene;
+    MPI_Comm                                          comm;
+    dealii::TimerOutput                              &timer;
     dealii::parallel::distributed::Triangulation<dim> triangulation;
-    Mesh<dim>                                 mesh;
-    dealii::FESystem<dim>                     fe;
-    std::unique_ptr<dealii::Mapping<dim>>     mapping;
-    dealii::DoFHandler<dim>                   dof_handler;
-    dealii::IndexSet                          owned, relevant;
-    dealii::AffineConstraints<double>         homogeneous_constraints;
-    dealii::AffineConstraints<double>         hanging_node_constraints;
-    MatrixType                                pattern_matrix;
-    std::vector<Load>                         dirichlet, surface_loads;
-    std::vector<PointForce>                   point_forces;
+    Mesh<dim>                                         mesh;
+    dealii::FESystem<dim>                             fe;
+    std::unique_ptr<dealii::Mapping<dim>>             mapping;
+    dealii::DoFHandler<dim>                           dof_handler;
+    dealii::IndexSet                                  owned, relevant;
+    dealii::AffineConstraints<double>                 homogeneous_constraints;
+    dealii::AffineConstraints<double>                 hanging_node_constraints;
+    MatrixType                                        pattern_matrix;
+    std::vector<Load>                                 dirichlet, surface_loads;
+    std::vector<PointForce>                           point_forces;
     std::vector<std::unique_ptr<dealii::FunctionParser<dim>>> body_forces;
-    std::unique_ptr<ManufacturedSolution<dim>> exact;
-    std::vector<dealii::types::boundary_id>   symmetry_ids[3];
+    std::unique_ptr<ManufacturedSolution<dim>>                exact;
+    std::vector<dealii::types::boundary_id>                   symmetry_ids[3];
     double max_youngs_modulus = 1., reference_area = 1.;
     bool   axisymmetric;
   };

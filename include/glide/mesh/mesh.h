@@ -29,7 +29,8 @@ namespace glide
     /// Build every body of @p scene into @p tria. Throws InputError for
     /// unreadable files and impossible geometry.
     void
-    build(const Scene &scene, dealii::parallel::distributed::Triangulation<dim> &tria);
+    build(const Scene                                       &scene,
+          dealii::parallel::distributed::Triangulation<dim> &tria);
 
     /// Boundary ids of the surface @p name (`<body>.<surface>`); throws an
     /// InputError that lists the known surfaces if there is none such.
@@ -71,8 +72,8 @@ namespace glide
    */
   template <int dim>
   void
-  build_body_mesh(const MeshParameters &                        parameters,
-                  const std::string &                           body_name,
-                  dealii::Triangulation<dim> &                  tria,
+  build_body_mesh(const MeshParameters                              &parameters,
+                  const std::string                                 &body_name,
+                  dealii::Triangulation<dim>                        &tria,
                   std::map<dealii::types::boundary_id, std::string> &names);
 } // namespace glide

@@ -46,8 +46,8 @@ namespace glide
     /// @p path is the subsection path, for error messages.
     void
     parse_parameters(dealii::ParameterHandler &prm,
-                     const std::string &       path,
-                     const std::string &       scene_directory,
+                     const std::string        &path,
+                     const std::string        &scene_directory,
                      const unsigned int        dim);
     /// Check that every point has @p dim components; @p path names the
     /// body's subsection in messages.

@@ -10,9 +10,9 @@ namespace glide
   struct OutputParameters
   {
     /// Results go to `<directory>/<scene name>/`.
-    std::string  directory  = "output";
-    bool         write_vtu  = true;
-    unsigned int every      = 1;
+    std::string  directory = "output";
+    bool         write_vtu = true;
+    unsigned int every     = 1;
 
     static void
     declare_parameters(dealii::ParameterHandler &prm);

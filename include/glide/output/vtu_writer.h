@@ -20,15 +20,17 @@ namespace glide
   class VtuWriter
   {
   public:
-    VtuWriter(const Elasticity<dim> &elasticity, const std::string &directory, const std::string &name);
+    VtuWriter(const Elasticity<dim> &elasticity,
+              const std::string     &directory,
+              const std::string     &name);
 
     /// Write step @p step at load factor @p time.
     void
     write(const unsigned int step, const double time, const VectorType &U);
 
   private:
-    const Elasticity<dim> &               elasticity;
-    const std::string                     directory, name;
+    const Elasticity<dim>                      &elasticity;
+    const std::string                           directory, name;
     std::vector<std::pair<double, std::string>> records;
   };
 } // namespace glide

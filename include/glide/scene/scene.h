@@ -29,7 +29,7 @@ namespace glide
     MeshParameters     mesh;
     MaterialParameters material;
     /// Body force per unit reference volume, ';'-separated components.
-    std::string        body_force;
+    std::string body_force;
   };
 
   /**
@@ -47,16 +47,16 @@ namespace glide
     std::string  file;      ///< the scene file, as given
     std::string  directory; ///< its directory, for relative mesh paths
     std::string  name;      ///< the scene name (default: file name stem)
-    unsigned int dimension = 2;
-    AnalysisType analysis  = AnalysisType::plane_strain;
-    unsigned int degree    = 1;
+    unsigned int dimension              = 2;
+    AnalysisType analysis               = AnalysisType::plane_strain;
+    unsigned int degree                 = 1;
     bool         geometric_nonlinearity = false;
 
     std::vector<BodyParameters>              bodies;
     std::vector<BoundaryConditionParameters> boundary_conditions;
     std::vector<NodeSetParameters>           node_sets;
     /// Name of the manufactured solution for verification, or "none".
-    std::string                              manufactured_solution = "none";
+    std::string manufactured_solution = "none";
 
     NonlinearSolverParameters nonlinear_solver;
     LinearSolverParameters    linear_solver;
@@ -69,7 +69,7 @@ namespace glide
      * the file. Throws InputError on any mistake.
      */
     static Scene
-    read(const std::string &             filename,
+    read(const std::string              &filename,
          const std::vector<std::string> &overrides = {});
 
     /// Print every parameter with default, pattern and documentation, with
@@ -83,7 +83,7 @@ namespace glide
 
   private:
     static void
-    declare_parameters(dealii::ParameterHandler &      prm,
+    declare_parameters(dealii::ParameterHandler       &prm,
                        const std::vector<std::string> &bodies,
                        const std::vector<std::string> &boundary_conditions,
                        const std::vector<std::string> &node_sets);

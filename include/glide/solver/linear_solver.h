@@ -30,19 +30,21 @@ namespace glide
     /// Decide between direct and AMG for a problem of @p n_dofs DoFs in
     /// @p dim dimensions; returns "direct" or "amg".
     std::string
-    choose(const unsigned int dim, const dealii::types::global_dof_index n_dofs);
+    choose(const unsigned int                    dim,
+           const dealii::types::global_dof_index n_dofs);
 
     /// Factorize (direct) or build the AMG hierarchy for @p matrix.
     void
-    initialize(const dealii::TrilinosWrappers::SparseMatrix &        matrix,
-               const std::vector<dealii::TrilinosWrappers::MPI::Vector> &near_null_space);
+    initialize(const dealii::TrilinosWrappers::SparseMatrix &matrix,
+               const std::vector<dealii::TrilinosWrappers::MPI::Vector>
+                 &near_null_space);
 
     /// Solve matrix * x = b to @p relative_tolerance (ignored by the direct
     /// solver); returns the number of Krylov iterations (1 for direct).
     /// Throws std::runtime_error if the solver fails.
     unsigned int
     solve(const dealii::TrilinosWrappers::MPI::Vector &b,
-          dealii::TrilinosWrappers::MPI::Vector &      x,
+          dealii::TrilinosWrappers::MPI::Vector       &x,
           const double                                 relative_tolerance);
 
     /// "direct (MUMPS)", "AMG-GMRES", ... for the log.
@@ -50,13 +52,13 @@ namespace glide
     description() const;
 
   private:
-    const LinearSolverParameters                      parameters;
-    MPI_Comm                                          comm;
-    std::string                                       kind;
-    const dealii::TrilinosWrappers::SparseMatrix *    matrix = nullptr;
-    dealii::SolverControl                             direct_control;
-    std::unique_ptr<dealii::TrilinosWrappers::SolverDirect>     direct;
-    std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG>  amg;
-    std::unique_ptr<Epetra_MultiVector>                         null_space;
+    const LinearSolverParameters                               parameters;
+    MPI_Comm                                                   comm;
+    std::string                                                kind;
+    const dealii::TrilinosWrappers::SparseMatrix              *matrix = nullptr;
+    dealii::SolverControl                                      direct_control;
+    std::unique_ptr<dealii::TrilinosWrappers::SolverDirect>    direct;
+    std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> amg;
+    std::unique_ptr<Epetra_MultiVector>                        null_space;
   };
 } // namespace glide

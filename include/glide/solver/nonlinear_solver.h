@@ -35,7 +35,8 @@ namespace glide
       /// Assemble and factorize the Jacobian at U.
       std::function<void(const VectorType &U)> setup_jacobian;
       /// Solve J dx = rhs; returns linear iterations.
-      std::function<unsigned int(const VectorType &rhs, VectorType &dx)> solve_jacobian;
+      std::function<unsigned int(const VectorType &rhs, VectorType &dx)>
+        solve_jacobian;
       /// Called once per Newton iteration with its number and scaled
       /// residual norm (for the log).
       std::function<void(unsigned int, double)> report;
@@ -47,7 +48,7 @@ namespace glide
       unsigned int iterations        = 0;
       unsigned int linear_iterations = 0;
       double       residual_norm     = 0.; ///< scaled max-norm at the end
-      std::string  message;              ///< why it failed
+      std::string  message;                ///< why it failed
     };
 
     NonlinearSolver(const NonlinearSolverParameters &parameters, MPI_Comm comm);
@@ -58,7 +59,7 @@ namespace glide
      * that its tolerances are unit-free.
      */
     Result
-    solve(VectorType &     U,
+    solve(VectorType      &U,
           const Callbacks &callbacks,
           const double     residual_scale,
           const double     solution_scale);

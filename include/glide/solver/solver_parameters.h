@@ -14,10 +14,10 @@ namespace glide
     /// Stop when the scaled max-norm of the residual is below this. The
     /// residual is scaled by 1 / (E_max * A_ref), A_ref the mean boundary
     /// facet measure, so the tolerance is unit-free (a strain-like number).
-    double       tolerance                = 1e-10;
-    unsigned int maximum_iterations       = 25;
+    double       tolerance          = 1e-10;
+    unsigned int maximum_iterations = 25;
     /// Jacobian re-use: 1 assembles the Jacobian every iteration.
-    unsigned int maximum_setup_calls      = 1;
+    unsigned int maximum_setup_calls = 1;
 
     static void
     declare_parameters(dealii::ParameterHandler &prm);
@@ -29,14 +29,14 @@ namespace glide
   struct LinearSolverParameters
   {
     /// "automatic", "direct" or "amg".
-    std::string  type                    = "automatic";
+    std::string type = "automatic";
     /// Amesos solver for "direct": "MUMPS" or "KLU".
-    std::string  direct_solver           = "MUMPS";
+    std::string direct_solver = "MUMPS";
     /// Largest number of DoFs for which "automatic" picks the direct solver
     /// in 3D (2D problems always get the direct solver).
-    unsigned int automatic_direct_limit  = 200000;
-    double       relative_tolerance      = 1e-8;
-    unsigned int maximum_iterations      = 2000;
+    unsigned int automatic_direct_limit = 200000;
+    double       relative_tolerance     = 1e-8;
+    unsigned int maximum_iterations     = 2000;
 
     static void
     declare_parameters(dealii::ParameterHandler &prm);
@@ -48,9 +48,9 @@ namespace glide
   /// failed steps are cut back and retried.
   struct LoadSteppingParameters
   {
-    unsigned int number_of_steps     = 1;
-    unsigned int maximum_cut_backs   = 6;
-    double       cut_back_factor     = 0.5;
+    unsigned int number_of_steps   = 1;
+    unsigned int maximum_cut_backs = 6;
+    double       cut_back_factor   = 0.5;
 
     static void
     declare_parameters(dealii::ParameterHandler &prm);

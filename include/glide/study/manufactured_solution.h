@@ -21,13 +21,17 @@ namespace glide
   class ManufacturedSolution : public dealii::Function<dim>
   {
   public:
-    ManufacturedSolution(const bool axisymmetric, const double lambda, const double mu);
+    ManufacturedSolution(const bool   axisymmetric,
+                         const double lambda,
+                         const double mu);
 
     double
-    value(const dealii::Point<dim> &p, const unsigned int component) const override;
+    value(const dealii::Point<dim> &p,
+          const unsigned int        component) const override;
 
     dealii::Tensor<1, dim>
-    gradient(const dealii::Point<dim> &p, const unsigned int component) const override;
+    gradient(const dealii::Point<dim> &p,
+             const unsigned int        component) const override;
 
     /// Body force per unit volume that balances the exact stress.
     dealii::Tensor<1, dim>
@@ -38,8 +42,8 @@ namespace glide
     second_derivatives(const dealii::Point<dim> &p, const unsigned int c) const;
 
   private:
-    const bool   axisymmetric;
-    const double lambda, mu;
+    const bool             axisymmetric;
+    const double           lambda, mu;
     dealii::Tensor<1, dim> wave[3];
     double                 amplitude[3], phase[3];
   };
