@@ -1,0 +1,133 @@
+#pragma once
+
+#include <glide/contact/rigid_master.h>
+#include <glide/mechanics/elasticity.h>
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace glide
+{
+  /**
+   * The contact part (DESIGN.md, "Contact formulation"): every contact pair
+   * of the scene, node-to-surface, finite sliding, against analytical rigid
+   * masters, with hard or penalty enforcement (P2.1, P2.3, P1.4). It
+   * depends on the bodies only through a narrow interface: reference
+   * positions and DoF indices of slave nodes, and the current iterate U.
+   *
+   * Hard contact adds one unknown per slave node, the normal contact force
+   * lambda (>= 0), numbered after the displacement DoFs. Its equation is the
+   * complementarity function
+   *   C(lambda, g) = lambda - max(0, lambda - c g) = 0,
+   * which holds exactly when lambda >= 0, g >= 0, lambda g = 0; c = E_max
+   * A_s / h_s (A_s the slave node's tributary area, h_s its facet size) makes
+   * c g a force, so rows and iteration counts do not depend on units. The
+   * active set is read off the current iterate inside the residual: Newton
+   * on (u, lambda) is the primal-dual active set method, driven by KINSOL.
+   * The displacement rows get -lambda dg/du; their Jacobian includes the
+   * curvature term -lambda d2g/du2 of curved masters.
+   */
+  template <int dim>
+  class Contact
+  {
+  public:
+    Contact(const Scene &scene, const Elasticity<dim> &elasticity, MPI_Comm comm);
+
+    /// Find the slave nodes of every pair and number the multipliers from
+    /// @p first_multiplier on (MPI: each process numbers its own nodes).
+    void
+    setup(const dealii::types::global_dof_index first_multiplier);
+
+    /// True if the scene has contact pairs.
+    bool
+    active() const
+    {
+      return !pairs.empty();
+    }
+
+    /// Multiplier indices owned by this process.
+    const dealii::IndexSet &
+    owned_multipliers() const
+    {
+      return multipliers;
+    }
+
+    dealii::types::global_dof_index
+    n_multipliers() const
+    {
+      return total_multipliers;
+    }
+
+    /// Couplings of contact terms, for the sparsity pattern.
+    void
+    add_sparsity(dealii::DynamicSparsityPattern &dsp) const;
+
+    /// Move rigid masters to load factor @p t.
+    void
+    set_time(const double t);
+
+    /// Add the contact terms to F (and to J if given), condensed with the
+    /// displacement constraints.
+    void
+    assemble(const VectorType &U, VectorType *F, MatrixType *J) const;
+
+    /// Entries of KINSOL's scaling vectors for the multiplier rows and
+    /// unknowns (contact forces): 1 / (E_max A_ref).
+    void
+    set_scaling(VectorType &residual_scale, VectorType &solution_scale, const double scale) const;
+
+    /// Per pair: active nodes, total normal contact force, largest
+    /// penetration; as statistics columns.
+    std::vector<std::pair<std::string, std::string>>
+    statistics(const VectorType &U) const;
+
+    /// Write one CSV row per slave node (position, gap, force, pressure,
+    /// status) for step @p step into @p directory.
+    void
+    write_nodes(const VectorType &U, const std::string &directory, const unsigned int step) const;
+
+    /// Effects for the log.
+    std::vector<std::string>
+    active_effects() const;
+
+  private:
+    struct SlaveNode
+    {
+      dealii::Point<dim>                               X;
+      std::array<dealii::types::global_dof_index, dim> dofs;
+      double                                           area = 0.; ///< tributary area
+      double                                           size = 0.; ///< facet size
+      dealii::types::global_dof_index                  multiplier = dealii::numbers::invalid_dof_index;
+      double                                           c = 0.; ///< NCP constant
+      double                                           k = 0.; ///< penalty stiffness * area
+    };
+    struct Pair
+    {
+      const ContactPairParameters *parameters;
+      std::unique_ptr<RigidMaster<dim>> master;
+      std::vector<SlaveNode>            nodes; ///< locally owned nodes
+    };
+    struct NodeState
+    {
+      typename RigidMaster<dim>::Projection projection;
+      dealii::Point<dim>                    x;
+      double                                lambda = 0.; ///< normal force
+      bool                                  closed = false;
+    };
+    NodeState
+    state(const Pair &pair, const SlaveNode &node, const VectorType &U) const;
+
+    const Scene &           scene;
+    const Elasticity<dim> & elasticity;
+    MPI_Comm                comm;
+    std::vector<Pair>       pairs;
+    dealii::IndexSet        multipliers;
+    dealii::types::global_dof_index total_multipliers = 0;
+    double                  max_youngs_modulus        = 0.;
+  };
+} // namespace glide

@@ -1,0 +1,56 @@
+#pragma once
+
+#include <glide/contact/contact_parameters.h>
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <memory>
+
+namespace glide
+{
+  /**
+   * An analytical rigid master surface (P1.4): a plane (a line in 2D), a
+   * circle/cylinder (axis along z in 3D) or a sphere, moved by a prescribed
+   * rigid motion x -> c + u(t) + R(theta(t)) (x - c). For a slave point x
+   * it gives the gap g (positive when open), the contact normal n = dg/dx
+   * (unit, pointing from the master towards the slave) and the curvature
+   * term d2g/dx2 that the consistent Jacobian needs (zero for a plane,
+   * (I - n n) / r for a circle or sphere of current distance r, projected
+   * on the plane normal to the axis for a cylinder).
+   */
+  template <int dim>
+  class RigidMaster
+  {
+  public:
+    struct Projection
+    {
+      double                 gap;
+      dealii::Tensor<1, dim> normal;
+      dealii::Tensor<2, dim> curvature;
+      dealii::Point<dim>     closest_point;
+    };
+
+    /// @p parameter_path names the pair in error messages.
+    RigidMaster(const ContactPairParameters &parameters, const std::string &parameter_path);
+
+    /// Move the master to load factor @p t.
+    void
+    set_time(const double t);
+
+    /// Gap, normal and curvature for the slave point @p x (current
+    /// position). Throws std::runtime_error where the normal is undefined
+    /// (a slave point on the axis of a circle or at a sphere's center).
+    Projection
+    project(const dealii::Point<dim> &x) const;
+
+  private:
+    const MasterType       type;
+    const bool             inside;
+    const double           radius;
+    dealii::Point<dim>     reference_point, point, rotation_center;
+    dealii::Tensor<1, dim> reference_normal, normal;
+    std::unique_ptr<dealii::FunctionParser<1>> translation, rotation;
+  };
+} // namespace glide

@@ -1,0 +1,112 @@
+#include <glide/contact/rigid_master.h>
+#include <glide/scene/input_error.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <sstream>
+
+namespace glide
+{
+  using namespace dealii;
+
+  namespace
+  {
+    std::unique_ptr<FunctionParser<1>>
+    parse(const std::string &expression, const unsigned int n, const std::string &parameter)
+    {
+      auto f = std::make_unique<FunctionParser<1>>(n);
+      try
+        {
+          // Functions of the load factor only: the variable is 't'.
+          f->initialize("t", Utilities::split_string_list(expression, ';'), {{"pi", numbers::PI}}, false);
+          Vector<double> v(n);
+          f->vector_value(Point<1>(0.), v);
+        }
+      catch (const ExceptionBase &e)
+        {
+          std::ostringstream s;
+          e.print_info(s);
+          throw InputError("Parameter '" + parameter + "' = '" + expression +
+                           "' is not a valid function of t: " + s.str());
+        }
+      return f;
+    }
+  } // namespace
+
+  template <int dim>
+  RigidMaster<dim>::RigidMaster(const ContactPairParameters &p, const std::string &path)
+    : type(p.master_type)
+    , inside(p.slave_inside)
+    , radius(p.radius)
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        reference_point[d]  = p.point[d];
+        reference_normal[d] = p.normal[d];
+        rotation_center[d]  = p.rotation_center[d];
+      }
+    reference_normal /= reference_normal.norm();
+    if (!p.translation.empty())
+      translation = parse(p.translation, dim, path + "/Rigid master/Translation");
+    rotation = parse(p.rotation, 1, path + "/Rigid master/Rotation");
+    set_time(0.);
+  }
+
+  template <int dim>
+  void
+  RigidMaster<dim>::set_time(const double t)
+  {
+    Tensor<1, dim> u;
+    if (translation)
+      for (unsigned int d = 0; d < dim; ++d)
+        u[d] = translation->value(Point<1>(t), d);
+    const double theta = rotation->value(Point<1>(t));
+    // Rotation about z (in 3D the axis of a cylinder stays along z only
+    // for theta = 0; rotations are meant for 2D and for planes).
+    auto rotate = [&](const Tensor<1, dim> &v) {
+      Tensor<1, dim> w = v;
+      w[0]             = std::cos(theta) * v[0] - std::sin(theta) * v[1];
+      w[1]             = std::sin(theta) * v[0] + std::cos(theta) * v[1];
+      return w;
+    };
+    point  = rotation_center + u + rotate(reference_point - rotation_center);
+    normal = rotate(reference_normal);
+  }
+
+  template <int dim>
+  typename RigidMaster<dim>::Projection
+  RigidMaster<dim>::project(const Point<dim> &x) const
+  {
+    Projection p;
+    if (type == MasterType::rigid_plane)
+      {
+        p.gap           = (x - point) * normal;
+        p.normal        = normal;
+        p.closest_point = x - p.gap * normal;
+        return p;
+      }
+    // Circle, cylinder (axis z in 3D) or sphere.
+    Tensor<1, dim> d = x - point;
+    Tensor<2, dim> P = unit_symmetric_tensor<dim>();
+    if (dim == 3 && type == MasterType::rigid_circle)
+      {
+        d[2]    = 0.;
+        P[2][2] = 0.;
+      }
+    const double r = d.norm();
+    if (!(r > 1e-12 * radius))
+      throw std::runtime_error("a slave node lies on the axis or at the center of the rigid master, "
+                               "where its normal is undefined");
+    const Tensor<1, dim> e          = d / r;
+    const Tensor<2, dim> tangential = (P - outer_product(e, e)) / r;
+    const double         sign       = inside ? -1. : 1.;
+    p.gap                           = sign * (r - radius);
+    p.normal                        = sign * e;
+    p.curvature                     = sign * tangential;
+    p.closest_point                 = x - (r - radius) * e;
+    return p;
+  }
+
+  template class RigidMaster<2>;
+  template class RigidMaster<3>;
+} // namespace glide
