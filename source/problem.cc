@@ -1,3 +1,4 @@
+#include <glide/contact/contact.h>
 #include <glide/mechanics/elasticity.h>
 #include <glide/output/statistics.h>
 #include <glide/output/vtu_writer.h>
@@ -53,13 +54,28 @@ namespace glide
 
     Elasticity<dim> elasticity(scene, comm, timer);
     elasticity.setup(); // every input check happens here, before output
+    Contact<dim> contact(scene, elasticity, comm);
+    {
+      TimerOutput::Scope t(timer, "setup");
+      contact.setup(elasticity.get_dof_handler().n_dofs());
+    }
+    elasticity.setup_system(contact.owned_multipliers(),
+                            [&](DynamicSparsityPattern &dsp) {
+                              contact.add_sparsity(dsp);
+                            });
 
     const auto &dof_handler = elasticity.get_dof_handler();
     // The Jacobian outlives the linear solver: Amesos keeps a pointer to it.
     MatrixType jacobian;
     jacobian.reinit(elasticity.matrix_pattern());
     LinearSolver linear_solver(scene.linear_solver, comm);
-    linear_solver.choose(dim, dof_handler.n_dofs());
+    const bool   saddle_point = contact.n_multipliers() > 0;
+    require(
+      !(saddle_point && scene.linear_solver.type == "amg"),
+      "In scene file '" + scene.file +
+        "': 'Linear solver/Type = amg' cannot solve the saddle-point systems of hard contact; "
+        "use 'direct' (or 'automatic'), or 'Enforcement = penalty'.");
+    linear_solver.choose(dim, saddle_point ? 0 : dof_handler.n_dofs());
 
     pcout << "glide: scene '" << scene.name << "' (" << scene.file << ")\n"
           << "  analysis:       " << scene.analysis_name() << ", " << dim
@@ -75,7 +91,9 @@ namespace glide
           << "\n"
           << "  linear solver:  " << linear_solver.description() << "\n"
           << "  active effects: ";
-    const auto effects = elasticity.active_effects();
+    auto effects = elasticity.active_effects();
+    for (const auto &e : contact.active_effects())
+      effects.push_back(e);
     for (unsigned int i = 0; i < effects.size(); ++i)
       pcout << (i ? "; " : "") << effects[i];
     pcout << std::endl;
@@ -100,7 +118,8 @@ namespace glide
     VtuWriter<dim> vtu(elasticity, directory, scene.name);
 
     std::vector<VectorType> modes;
-    if (linear_solver.choose(dim, dof_handler.n_dofs()) == "amg")
+    if (linear_solver.choose(dim, saddle_point ? 0 : dof_handler.n_dofs()) ==
+        "amg")
       modes = elasticity.rigid_body_modes();
 
     const auto                &owned = elasticity.locally_owned();
@@ -110,9 +129,19 @@ namespace glide
     callbacks.reinit_vector = [&](VectorType &v) { v.reinit(owned, comm); };
     callbacks.residual      = [&](const VectorType &u, VectorType &F) {
       elasticity.residual(u, t, F);
+      if (contact.active())
+        {
+          TimerOutput::Scope s(timer, "contact: residual");
+          contact.assemble(u, &F, nullptr);
+        }
     };
     callbacks.setup_jacobian = [&](const VectorType &u) {
       elasticity.jacobian(u, jacobian);
+      if (contact.active())
+        {
+          TimerOutput::Scope s(timer, "contact: Jacobian");
+          contact.assemble(u, nullptr, &jacobian);
+        }
       TimerOutput::Scope s(timer, "linear solver: setup");
       linear_solver.initialize(jacobian, modes);
     };
@@ -128,6 +157,14 @@ namespace glide
             << scientific(r) << std::endl;
     };
     NonlinearSolver newton(scene.nonlinear_solver, comm);
+    // KINSOL's scalings: force rows and contact rows by 1/(E_max A_ref),
+    // displacements by 1/L, contact forces by 1/(E_max A_ref).
+    VectorType residual_scale(owned, comm), solution_scale(owned, comm);
+    residual_scale = elasticity.residual_scale();
+    solution_scale = 1. / elasticity.length_scale();
+    contact.set_scaling(residual_scale,
+                        solution_scale,
+                        elasticity.residual_scale());
 
     const double nominal = 1. / scene.load_stepping.number_of_steps;
     double       dt      = nominal;
@@ -140,13 +177,12 @@ namespace glide
           t = 1.;
         VectorType U_trial = U;
         elasticity.constraints_at(t).distribute(U_trial);
+        contact.set_time(t);
         pcout << "Step " << step + 1 << ": load factor " << t << " (increment "
               << t - t_old << ")" << std::endl;
         Timer      step_timer(comm);
-        const auto result = newton.solve(U_trial,
-                                         callbacks,
-                                         elasticity.residual_scale(),
-                                         1. / elasticity.length_scale());
+        const auto result =
+          newton.solve(U_trial, callbacks, residual_scale, solution_scale);
         if (!result.converged)
           {
             pcout << "  step failed: " << result.message << std::endl;
@@ -184,6 +220,10 @@ namespace glide
             for (unsigned int d = 0; d < dim; ++d)
               row.emplace_back("reaction_" + surface + "_" + axis[d],
                                format_number(force[d]));
+          for (const auto &column : contact.statistics(U))
+            row.push_back(column);
+          if (contact.active())
+            contact.write_nodes(U, directory, step);
           if (scene.manufactured_solution != "none")
             {
               const auto [l2, h1] = elasticity.errors(U);

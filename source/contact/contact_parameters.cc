@@ -12,16 +12,21 @@ namespace glide
   namespace
   {
     std::vector<double>
-    read_point(ParameterHandler &prm, const std::string &entry, const unsigned int dim, const std::string &path)
+    read_point(ParameterHandler  &prm,
+               const std::string &entry,
+               const unsigned int dim,
+               const std::string &path)
     {
-      auto v = Utilities::string_to_double(Utilities::split_string_list(prm.get(entry)));
+      auto v = Utilities::string_to_double(
+        Utilities::split_string_list(prm.get(entry)));
       if (dim == 3 && v.size() == 2 && prm.get(entry) == "0, 0")
         v.push_back(0.);
       if (dim == 3 && v.size() == 2 && prm.get(entry) == "0, 1")
         v.push_back(0.);
       require(v.size() == dim,
-              "Parameter '" + path + "/" + entry + "' needs " + std::to_string(dim) +
-                " comma-separated components in a " + std::to_string(dim) + "D scene.");
+              "Parameter '" + path + "/" + entry + "' needs " +
+                std::to_string(dim) + " comma-separated components in a " +
+                std::to_string(dim) + "D scene.");
       return v;
     }
   } // namespace
@@ -29,89 +34,102 @@ namespace glide
   void
   ContactPairParameters::declare_parameters(ParameterHandler &prm)
   {
-    prm.declare_entry("Slave",
-                      "",
-                      Patterns::Anything(),
-                      "Slave surface <body>.<surface> (usually the finer or softer "
-                      "side), or a node set for a node-based slave surface.");
-    prm.declare_entry("Master",
-                      "rigid plane",
-                      Patterns::Anything(),
-                      "A surface <body>.<surface> of a deformable body, or an "
-                      "analytical rigid master: 'rigid plane' (a line in 2D), "
-                      "'rigid circle' (a circle in 2D, a cylinder along z in 3D), "
-                      "'rigid sphere' (3D; a circle in 2D, e.g. axisymmetric).");
-    prm.declare_entry("Formulation",
-                      "node to surface",
-                      Patterns::Selection("node to surface"),
-                      "Contact discretization: node to surface (one constraint per "
-                      "slave node).");
+    prm.declare_entry(
+      "Slave",
+      "",
+      Patterns::Anything(),
+      "Slave surface <body>.<surface> (usually the finer or softer "
+      "side), or a node set for a node-based slave surface.");
+    prm.declare_entry(
+      "Master",
+      "rigid plane",
+      Patterns::Anything(),
+      "A surface <body>.<surface> of a deformable body, or an "
+      "analytical rigid master: 'rigid plane' (a line in 2D), "
+      "'rigid circle' (a circle in 2D, a cylinder along z in 3D), "
+      "'rigid sphere' (3D; a circle in 2D, e.g. axisymmetric).");
+    prm.declare_entry(
+      "Formulation",
+      "node to surface",
+      Patterns::Selection("node to surface"),
+      "Contact discretization: node to surface (one constraint per "
+      "slave node).");
     prm.declare_entry("Sliding",
                       "finite",
                       Patterns::Selection("finite"),
                       "finite: the projection onto the master is updated every "
                       "iteration (also in geometrically linear scenes, R4.1).");
-    prm.declare_entry("Smoothing fraction",
-                      "0.2",
-                      Patterns::Double(),
-                      "Fraction f of the facet length over which kinks of a faceted "
-                      "master are smoothed (R1): 0 <= f < 0.5, 0 turns smoothing "
-                      "off. Analytical rigid masters are smooth already.");
-    prm.declare_entry("Enforcement",
-                      "hard",
-                      Patterns::Selection("hard|penalty"),
-                      "hard: one Lagrange multiplier (contact force) per slave node, "
-                      "complementarity solved by semismooth Newton in KINSOL; no "
-                      "penetration. penalty: pressure = stiffness x penetration.");
-    prm.declare_entry("Penalty stiffness",
-                      "0",
-                      Patterns::Double(0.),
-                      "Penalty stiffness (stress per length). 0: automatic, 1000 "
-                      "E_max / h with h the mean slave facet size.");
-    prm.declare_entry("Linearization",
-                      "unsymmetric",
-                      Patterns::Selection("unsymmetric|symmetrized"),
-                      "unsymmetric: the full consistent Jacobian (R5.1, default). "
-                      "symmetrized: its symmetric part, as a symmetric solver would "
-                      "use (R5.2), to measure what that costs.");
+    prm.declare_entry(
+      "Smoothing fraction",
+      "0.2",
+      Patterns::Double(),
+      "Fraction f of the facet length over which kinks of a faceted "
+      "master are smoothed (R1): 0 <= f < 0.5, 0 turns smoothing "
+      "off. Analytical rigid masters are smooth already.");
+    prm.declare_entry(
+      "Enforcement",
+      "hard",
+      Patterns::Selection("hard|penalty"),
+      "hard: one Lagrange multiplier (contact force) per slave node, "
+      "complementarity solved by semismooth Newton in KINSOL; no "
+      "penetration. penalty: pressure = stiffness x penetration.");
+    prm.declare_entry(
+      "Penalty stiffness",
+      "0",
+      Patterns::Double(0.),
+      "Penalty stiffness (stress per length). 0: automatic, 1000 "
+      "E_max / h with h the mean slave facet size.");
+    prm.declare_entry(
+      "Linearization",
+      "unsymmetric",
+      Patterns::Selection("unsymmetric|symmetrized"),
+      "unsymmetric: the full consistent Jacobian (R5.1, default). "
+      "symmetrized: its symmetric part, as a symmetric solver would "
+      "use (R5.2), to measure what that costs.");
     prm.enter_subsection("Rigid master");
-    prm.declare_entry("Point",
-                      "0, 0",
-                      Patterns::List(Patterns::Double(), 2, 3),
-                      "A point of the rigid plane, or the center of the rigid "
-                      "circle/cylinder/sphere, in the reference configuration.");
-    prm.declare_entry("Normal",
-                      "0, 1",
-                      Patterns::List(Patterns::Double(), 2, 3),
-                      "Normal of the rigid plane, pointing towards the slave side.");
+    prm.declare_entry(
+      "Point",
+      "0, 0",
+      Patterns::List(Patterns::Double(), 2, 3),
+      "A point of the rigid plane, or the center of the rigid "
+      "circle/cylinder/sphere, in the reference configuration.");
+    prm.declare_entry(
+      "Normal",
+      "0, 1",
+      Patterns::List(Patterns::Double(), 2, 3),
+      "Normal of the rigid plane, pointing towards the slave side.");
     prm.declare_entry("Radius",
                       "1",
                       Patterns::Double(0.),
                       "Radius of the rigid circle, cylinder or sphere (> 0).");
-    prm.declare_entry("Slave inside",
-                      "false",
-                      Patterns::Bool(),
-                      "true: the slave lies inside the circle/cylinder/sphere (a "
-                      "rigid hole); false: outside (a rigid punch or roller).");
-    prm.declare_entry("Translation",
-                      "",
-                      Patterns::Anything(),
-                      "Prescribed rigid translation as ';'-separated functions of "
-                      "the load factor t, e.g. '0; -0.1*t'. Empty: none.");
-    prm.declare_entry("Rotation",
-                      "0",
-                      Patterns::Anything(),
-                      "Prescribed rotation angle (radians, counter-clockwise about "
-                      "z) as a function of t, about 'Rotation center'.");
-    prm.declare_entry("Rotation center",
-                      "0, 0",
-                      Patterns::List(Patterns::Double(), 2, 3),
-                      "Center of the prescribed rotation (reference configuration).");
+    prm.declare_entry(
+      "Slave inside",
+      "false",
+      Patterns::Bool(),
+      "true: the slave lies inside the circle/cylinder/sphere (a "
+      "rigid hole); false: outside (a rigid punch or roller).");
+    prm.declare_entry(
+      "Translation",
+      "",
+      Patterns::Anything(),
+      "Prescribed rigid translation as ';'-separated functions of "
+      "the load factor t, e.g. '0; -0.1*t'. Empty: none.");
+    prm.declare_entry(
+      "Rotation",
+      "0",
+      Patterns::Anything(),
+      "Prescribed rotation angle (radians, counter-clockwise about "
+      "z) as a function of t, about 'Rotation center'.");
+    prm.declare_entry(
+      "Rotation center",
+      "0, 0",
+      Patterns::List(Patterns::Double(), 2, 3),
+      "Center of the prescribed rotation (reference configuration).");
     prm.leave_subsection();
   }
 
   void
-  ContactPairParameters::parse_parameters(ParameterHandler & prm,
+  ContactPairParameters::parse_parameters(ParameterHandler  &prm,
                                           const std::string &pair_name,
                                           const unsigned int dim)
   {
@@ -122,16 +140,19 @@ namespace glide
     formulation            = prm.get("Formulation");
     sliding                = prm.get("Sliding");
     smoothing              = prm.get_double("Smoothing fraction");
-    enforcement = prm.get("Enforcement") == "hard" ? Enforcement::hard : Enforcement::penalty;
+    enforcement       = prm.get("Enforcement") == "hard" ? Enforcement::hard :
+                                                           Enforcement::penalty;
     penalty_stiffness = prm.get_double("Penalty stiffness");
     symmetrized       = prm.get("Linearization") == "symmetrized";
 
     require(!slave.empty(),
-            "Parameter '" + path + "/Slave' is empty; name the slave surface as <body>.<surface>.");
-    require(smoothing >= 0. && smoothing < 0.5,
-            "Parameter '" + path + "/Smoothing fraction' = " + prm.get("Smoothing fraction") +
-              " of contact pair '" + name +
-              "' is out of range: it must satisfy 0 <= f < 0.5 (0 turns smoothing off).");
+            "Parameter '" + path +
+              "/Slave' is empty; name the slave surface as <body>.<surface>.");
+    require(
+      smoothing >= 0. && smoothing < 0.5,
+      "Parameter '" + path + "/Smoothing fraction' = " +
+        prm.get("Smoothing fraction") + " of contact pair '" + name +
+        "' is out of range: it must satisfy 0 <= f < 0.5 (0 turns smoothing off).");
     if (master == "rigid plane")
       master_type = MasterType::rigid_plane;
     else if (master == "rigid circle")
@@ -141,16 +162,20 @@ namespace glide
     else
       {
         master_type = MasterType::surface;
-        require(master.find('.') != std::string::npos,
-                "Parameter '" + path + "/Master' = '" + master +
-                  "' is neither a surface <body>.<surface> nor one of 'rigid plane', "
-                  "'rigid circle', 'rigid sphere'.");
-        require(master != slave,
-                "Contact pair '" + name + "': the surface '" + master +
-                  "' is both slave and master; a surface cannot contact itself.");
-        throw InputError("Contact pair '" + name + "': deformable master surfaces ('" + master +
-                         "') are not available yet; use a rigid master ('rigid plane', "
-                         "'rigid circle' or 'rigid sphere').");
+        require(
+          master.find('.') != std::string::npos,
+          "Parameter '" + path + "/Master' = '" + master +
+            "' is neither a surface <body>.<surface> nor one of 'rigid plane', "
+            "'rigid circle', 'rigid sphere'.");
+        require(
+          master != slave,
+          "Contact pair '" + name + "': the surface '" + master +
+            "' is both slave and master; a surface cannot contact itself.");
+        throw InputError(
+          "Contact pair '" + name + "': deformable master surfaces ('" +
+          master +
+          "') are not available yet; use a rigid master ('rigid plane', "
+          "'rigid circle' or 'rigid sphere').");
       }
 
     prm.enter_subsection("Rigid master");
@@ -160,17 +185,20 @@ namespace glide
     slave_inside = prm.get_bool("Slave inside");
     translation  = prm.get("Translation");
     rotation     = prm.get("Rotation");
-    rotation_center = read_point(prm, "Rotation center", dim, path + "/Rigid master");
+    rotation_center =
+      read_point(prm, "Rotation center", dim, path + "/Rigid master");
     prm.leave_subsection();
 
     double n2 = 0;
     for (const double x : normal)
       n2 += x * x;
-    require(n2 > 0., "Parameter '" + path + "/Rigid master/Normal' must not be zero.");
-    require(radius > 0., "Parameter '" + path + "/Rigid master/Radius' must be > 0.");
+    require(n2 > 0.,
+            "Parameter '" + path + "/Rigid master/Normal' must not be zero.");
+    require(radius > 0.,
+            "Parameter '" + path + "/Rigid master/Radius' must be > 0.");
     if (!translation.empty())
       require(Utilities::split_string_list(translation, ';').size() == dim,
-              "Parameter '" + path + "/Rigid master/Translation' needs " + std::to_string(dim) +
-                " ';'-separated functions of t.");
+              "Parameter '" + path + "/Rigid master/Translation' needs " +
+                std::to_string(dim) + " ';'-separated functions of t.");
   }
 } // namespace glide

@@ -2,6 +2,7 @@
 #include <glide/scene/input_error.h>
 
 #include <deal.II/base/utilities.h>
+#include <deal.II/lac/vector.h>
 
 #include <sstream>
 
@@ -12,13 +13,18 @@ namespace glide
   namespace
   {
     std::unique_ptr<FunctionParser<1>>
-    parse(const std::string &expression, const unsigned int n, const std::string &parameter)
+    parse(const std::string &expression,
+          const unsigned int n,
+          const std::string &parameter)
     {
       auto f = std::make_unique<FunctionParser<1>>(n);
       try
         {
           // Functions of the load factor only: the variable is 't'.
-          f->initialize("t", Utilities::split_string_list(expression, ';'), {{"pi", numbers::PI}}, false);
+          f->initialize("t",
+                        Utilities::split_string_list(expression, ';'),
+                        {{"pi", numbers::PI}},
+                        false);
           Vector<double> v(n);
           f->vector_value(Point<1>(0.), v);
         }
@@ -34,7 +40,8 @@ namespace glide
   } // namespace
 
   template <int dim>
-  RigidMaster<dim>::RigidMaster(const ContactPairParameters &p, const std::string &path)
+  RigidMaster<dim>::RigidMaster(const ContactPairParameters &p,
+                                const std::string           &path)
     : type(p.master_type)
     , inside(p.slave_inside)
     , radius(p.radius)
@@ -47,7 +54,8 @@ namespace glide
       }
     reference_normal /= reference_normal.norm();
     if (!p.translation.empty())
-      translation = parse(p.translation, dim, path + "/Rigid master/Translation");
+      translation =
+        parse(p.translation, dim, path + "/Rigid master/Translation");
     rotation = parse(p.rotation, 1, path + "/Rigid master/Rotation");
     set_time(0.);
   }
@@ -95,8 +103,9 @@ namespace glide
       }
     const double r = d.norm();
     if (!(r > 1e-12 * radius))
-      throw std::runtime_error("a slave node lies on the axis or at the center of the rigid master, "
-                               "where its normal is undefined");
+      throw std::runtime_error(
+        "a slave node lies on the axis or at the center of the rigid master, "
+        "where its normal is undefined");
     const Tensor<1, dim> e          = d / r;
     const Tensor<2, dim> tangential = (P - outer_product(e, e)) / r;
     const double         sign       = inside ? -1. : 1.;

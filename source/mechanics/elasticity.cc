@@ -227,22 +227,6 @@ namespace glide
           surface_loads.push_back(std::move(load));
       }
 
-    hanging_node_constraints.reinit(relevant);
-    DoFTools::make_hanging_node_constraints(dof_handler,
-                                            hanging_node_constraints);
-    hanging_node_constraints.close();
-    homogeneous_constraints = constraints_at(0.);
-    for (const auto &i : homogeneous_constraints.get_lines())
-      homogeneous_constraints.set_inhomogeneity(i.index, 0.);
-
-    DynamicSparsityPattern dsp(relevant);
-    DoFTools::make_sparsity_pattern(dof_handler,
-                                    dsp,
-                                    homogeneous_constraints,
-                                    false);
-    SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
-    pattern_matrix.reinit(owned, owned, dsp, comm);
-
     // Reference area of a boundary face (per unit thickness in plane strain,
     // times 2 pi r in axisymmetric analysis).
     double area = 0, count = 0;
@@ -279,11 +263,68 @@ namespace glide
   }
 
   template <int dim>
+  void
+  Elasticity<dim>::setup_system(
+    const IndexSet                                      &extra,
+    const std::function<void(DynamicSparsityPattern &)> &add_couplings)
+  {
+    TimerOutput::Scope t(timer, "setup");
+    // The unknowns: displacement DoFs, then any extra unknowns (contact
+    // multipliers) that other parts own.
+    owned_total = IndexSet(
+      std::max<types::global_dof_index>(dof_handler.n_dofs(), extra.size()));
+    owned_total.add_indices(owned);
+    owned_total.add_indices(extra);
+    relevant_total = IndexSet(owned_total.size());
+    relevant_total.add_indices(relevant);
+    relevant_total.add_indices(extra);
+
+    hanging_node_constraints.reinit(relevant_total);
+    DoFTools::make_hanging_node_constraints(dof_handler,
+                                            hanging_node_constraints);
+    hanging_node_constraints.close();
+    homogeneous_constraints = constraints_at(0.);
+    for (const auto &i : homogeneous_constraints.get_lines())
+      homogeneous_constraints.set_inhomogeneity(i.index, 0.);
+
+    DynamicSparsityPattern dsp(relevant_total);
+    DoFTools::make_sparsity_pattern(dof_handler,
+                                    dsp,
+                                    homogeneous_constraints,
+                                    false);
+    if (add_couplings)
+      add_couplings(dsp);
+    SparsityTools::distribute_sparsity_pattern(dsp,
+                                               owned_total,
+                                               comm,
+                                               relevant_total);
+    pattern_matrix.reinit(owned_total, owned_total, dsp, comm);
+  }
+
+  template <int dim>
+  VectorType
+  Elasticity<dim>::ghosted_displacement(const VectorType &U) const
+  {
+    VectorType ghosted(owned, relevant, comm);
+    if (owned_total.n_elements() == owned.n_elements())
+      ghosted = U;
+    else
+      {
+        VectorType displacement(owned, comm);
+        for (const auto i : owned)
+          displacement[i] = U[i];
+        displacement.compress(VectorOperation::insert);
+        ghosted = displacement;
+      }
+    return ghosted;
+  }
+
+  template <int dim>
   AffineConstraints<double>
   Elasticity<dim>::constraints_at(const double t) const
   {
     AffineConstraints<double> c;
-    c.reinit(relevant);
+    c.reinit(relevant_total);
     DoFTools::make_hanging_node_constraints(dof_handler, c);
     for (const auto &d : dirichlet)
       {
@@ -359,8 +400,7 @@ namespace glide
                             MatrixType                      *J,
                             const AffineConstraints<double> &constraints) const
   {
-    VectorType U_ghost(owned, relevant, comm);
-    U_ghost = U;
+    const VectorType U_ghost = ghosted_displacement(U);
     if (F)
       *F = 0;
     if (J)
@@ -549,7 +589,7 @@ namespace glide
   {
     // Condense hanging nodes only: then the residual vanishes at every DoF
     // but the Dirichlet ones, where it is the reaction.
-    VectorType F(owned, comm);
+    VectorType F(owned_total, comm);
     assemble(U, t, &F, nullptr, hanging_node_constraints);
     std::map<std::string, Tensor<1, dim>> result;
     for (const auto &d : dirichlet)
@@ -583,8 +623,7 @@ namespace glide
   Elasticity<dim>::errors(const VectorType &U) const
   {
     Assert(exact, ExcInternalError());
-    VectorType U_ghost(owned, relevant, comm);
-    U_ghost = U;
+    const VectorType  U_ghost = ghosted_displacement(U);
     Vector<float>     cellwise(triangulation.n_active_cells());
     const QGauss<dim> q(scene.degree + 2);
     VectorTools::integrate_difference(*mapping,
@@ -616,7 +655,7 @@ namespace glide
   Elasticity<dim>::rigid_body_modes() const
   {
     const unsigned int      n_modes = axisymmetric ? dim : dim * (dim + 1) / 2;
-    std::vector<VectorType> modes(n_modes, VectorType(owned, comm));
+    std::vector<VectorType> modes(n_modes, VectorType(owned_total, comm));
     const auto             &points = fe.get_unit_support_points();
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
     for (const auto &cell : dof_handler.active_cell_iterators())

@@ -126,12 +126,9 @@ namespace glide
                         const double       time,
                         const VectorType  &U)
   {
-    const auto &dof_handler = elasticity.get_dof_handler();
-    const auto  comm        = elasticity.get_triangulation().get_communicator();
-    VectorType  U_ghost(elasticity.locally_owned(),
-                       elasticity.locally_relevant(),
-                       comm);
-    U_ghost = U;
+    const auto      &dof_handler = elasticity.get_dof_handler();
+    const auto       comm = elasticity.get_triangulation().get_communicator();
+    const VectorType U_ghost = elasticity.ghosted_displacement(U);
 
     DataOut<dim> data_out;
     data_out.attach_dof_handler(dof_handler);

@@ -66,6 +66,7 @@ namespace glide
     const std::vector<std::string> example_bodies{"body"};
     const std::vector<std::string> example_conditions{"example"};
     const std::vector<std::string> example_node_sets{"example"};
+    const std::vector<std::string> example_pairs{"example"};
   } // namespace
 
 
@@ -74,7 +75,8 @@ namespace glide
   Scene::declare_parameters(ParameterHandler               &prm,
                             const std::vector<std::string> &bodies,
                             const std::vector<std::string> &conditions,
-                            const std::vector<std::string> &node_sets)
+                            const std::vector<std::string> &node_sets,
+                            const std::vector<std::string> &contact_pairs)
   {
     prm.declare_entry("Scene name",
                       "",
@@ -127,6 +129,14 @@ namespace glide
                       "each name gets a subsection 'Node set <name>'. Every "
                       "surface is also a node set under its own name.");
 
+    prm.declare_entry(
+      "Contact pairs",
+      "",
+      Patterns::List(Patterns::Anything()),
+      "Comma-separated names of contact pairs; each name gets a "
+      "subsection 'Contact pair <name>'. Empty: no contact, and "
+      "no contact machinery is built.");
+
     for (const auto &b : bodies)
       {
         prm.enter_subsection("Body " + b);
@@ -150,6 +160,13 @@ namespace glide
       {
         prm.enter_subsection("Node set " + n);
         NodeSetParameters::declare_parameters(prm);
+        prm.leave_subsection();
+      }
+
+    for (const auto &c : contact_pairs)
+      {
+        prm.enter_subsection("Contact pair " + c);
+        ContactPairParameters::declare_parameters(prm);
         prm.leave_subsection();
       }
 
@@ -218,6 +235,13 @@ namespace glide
         prm.leave_subsection();
       }
 
+    for (auto &cp : contact_pairs)
+      {
+        prm.enter_subsection("Contact pair " + cp.name);
+        cp.parse_parameters(prm, cp.name, dimension);
+        prm.leave_subsection();
+      }
+
     prm.enter_subsection("Verification");
     manufactured_solution = prm.get("Manufactured solution");
     prm.leave_subsection();
@@ -267,6 +291,18 @@ namespace glide
                 "Boundary condition '" + bc.name +
                   "': ZSYMM needs a 3D scene; in 2D use XSYMM or YSYMM.");
       }
+
+    for (const auto &cp : contact_pairs)
+      for (const auto &surface : Utilities::split_string_list(cp.slave, ','))
+        {
+          const std::string path = "Contact pair " + cp.name + "/Slave";
+          const auto        dot  = surface.find('.');
+          require(
+            dot != std::string::npos &&
+              body_names.count(surface.substr(0, dot)) > 0,
+            "Parameter '" + path + "' = '" + surface +
+              "' is not a surface <body>.<surface> of a body of this scene.");
+        }
 
     require(!(manufactured_solution != "none" && geometric_nonlinearity),
             "Parameter 'Verification/Manufactured solution' needs a "
@@ -361,16 +397,17 @@ namespace glide
     };
 
     // Pass 1: the lists of names only; everything else is skipped.
-    std::vector<std::string> bodies, conditions, node_sets;
+    std::vector<std::string> bodies, conditions, node_sets, pairs;
     try
       {
         ParameterHandler prm;
-        declare_parameters(prm, {}, {}, {});
+        declare_parameters(prm, {}, {}, {}, {});
         prm.parse_input(filename, "", true);
         apply_overrides(prm, true);
         bodies     = split_names(prm.get("Bodies"));
         conditions = split_names(prm.get("Boundary conditions"));
         node_sets  = split_names(prm.get("Node sets"));
+        pairs      = split_names(prm.get("Contact pairs"));
       }
     catch (const ExceptionBase &e)
       {
@@ -379,12 +416,13 @@ namespace glide
     check_names(bodies, "Bodies");
     check_names(conditions, "Boundary conditions");
     check_names(node_sets, "Node sets");
+    check_names(pairs, "Contact pairs");
     require(!bodies.empty(),
             "Scene '" + filename + "': 'Bodies' must name at least one body.");
 
     // Pass 2: strict, with one subsection per name.
     ParameterHandler prm;
-    declare_parameters(prm, bodies, conditions, node_sets);
+    declare_parameters(prm, bodies, conditions, node_sets, pairs);
     try
       {
         prm.parse_input(filename);
@@ -408,6 +446,11 @@ namespace glide
       {
         scene.node_sets.emplace_back();
         scene.node_sets.back().name = n;
+      }
+    for (const auto &n : pairs)
+      {
+        scene.contact_pairs.emplace_back();
+        scene.contact_pairs.back().name = n;
       }
     try
       {
@@ -443,7 +486,8 @@ namespace glide
     declare_parameters(prm,
                        example_bodies,
                        example_conditions,
-                       example_node_sets);
+                       example_node_sets,
+                       example_pairs);
     const auto style = (format == "json" ? ParameterHandler::JSON :
                         format == "xml"  ? ParameterHandler::XML :
                                            ParameterHandler::PRM);

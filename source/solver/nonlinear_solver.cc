@@ -21,6 +21,20 @@ namespace glide
                          const double     residual_scale,
                          const double     solution_scale)
   {
+    VectorType f_scale, u_scale;
+    cb.reinit_vector(f_scale);
+    cb.reinit_vector(u_scale);
+    f_scale = residual_scale;
+    u_scale = solution_scale;
+    return solve(U, cb, f_scale, u_scale);
+  }
+
+  NonlinearSolver::Result
+  NonlinearSolver::solve(VectorType       &U,
+                         const Callbacks  &cb,
+                         const VectorType &residual_scale,
+                         const VectorType &solution_scale)
+  {
     using KINSOL = SUNDIALS::KINSOL<VectorType>;
     typename KINSOL::AdditionalData data(parameters.strategy == "newton" ?
                                            KINSOL::AdditionalData::newton :
@@ -34,11 +48,13 @@ namespace glide
 
     Result      result;
     std::string failure; // set by a callback that failed
-    VectorType  f_scale, u_scale;
-    cb.reinit_vector(f_scale);
-    cb.reinit_vector(u_scale);
-    f_scale = residual_scale;
-    u_scale = solution_scale;
+    VectorType  f_scale = residual_scale, u_scale = solution_scale;
+    // Scaled max-norm ||D_F F||_inf, KINSOL's measure of convergence.
+    auto scaled_norm = [&](const VectorType &F) {
+      VectorType scaled = F;
+      scaled.scale(residual_scale);
+      return scaled.linfty_norm();
+    };
 
     // Exceptions must not cross KINSOL's C code: callbacks catch them and
     // return KINSOL's "recoverable" (1) or "fatal" (-1) codes instead.
@@ -59,7 +75,7 @@ namespace glide
                                 const VectorType &F) -> int {
       try
         {
-          cb.report(result.iterations, F.linfty_norm() * residual_scale);
+          cb.report(result.iterations, scaled_norm(F));
           ++result.iterations;
           cb.setup_jacobian(u);
           return 0;
@@ -106,7 +122,7 @@ namespace glide
     try
       {
         cb.residual(U, F);
-        result.residual_norm = F.linfty_norm() * residual_scale;
+        result.residual_norm = scaled_norm(F);
       }
     catch (const std::exception &e)
       {

@@ -57,6 +57,7 @@ namespace
                       TimerOutput::wall_times);
     Elasticity<dim> e(scene, MPI_COMM_WORLD, timer);
     e.setup();
+    e.setup_system();
     // There are hanging nodes (local refinement), so the test also covers
     // the condensation of the residual and the Jacobian.
     ASSERT_GT(e.update_constraints().n_constraints(), 0u);

@@ -36,7 +36,9 @@ namespace glide
   class Contact
   {
   public:
-    Contact(const Scene &scene, const Elasticity<dim> &elasticity, MPI_Comm comm);
+    Contact(const Scene           &scene,
+            const Elasticity<dim> &elasticity,
+            MPI_Comm               comm);
 
     /// Find the slave nodes of every pair and number the multipliers from
     /// @p first_multiplier on (MPI: each process numbers its own nodes).
@@ -79,7 +81,9 @@ namespace glide
     /// Entries of KINSOL's scaling vectors for the multiplier rows and
     /// unknowns (contact forces): 1 / (E_max A_ref).
     void
-    set_scaling(VectorType &residual_scale, VectorType &solution_scale, const double scale) const;
+    set_scaling(VectorType  &residual_scale,
+                VectorType  &solution_scale,
+                const double scale) const;
 
     /// Per pair: active nodes, total normal contact force, largest
     /// penetration; as statistics columns.
@@ -89,7 +93,9 @@ namespace glide
     /// Write one CSV row per slave node (position, gap, force, pressure,
     /// status) for step @p step into @p directory.
     void
-    write_nodes(const VectorType &U, const std::string &directory, const unsigned int step) const;
+    write_nodes(const VectorType  &U,
+                const std::string &directory,
+                const unsigned int step) const;
 
     /// Effects for the log.
     std::vector<std::string>
@@ -100,15 +106,16 @@ namespace glide
     {
       dealii::Point<dim>                               X;
       std::array<dealii::types::global_dof_index, dim> dofs;
-      double                                           area = 0.; ///< tributary area
-      double                                           size = 0.; ///< facet size
-      dealii::types::global_dof_index                  multiplier = dealii::numbers::invalid_dof_index;
-      double                                           c = 0.; ///< NCP constant
-      double                                           k = 0.; ///< penalty stiffness * area
+      double                          area = 0.; ///< tributary area
+      double                          size = 0.; ///< facet size
+      dealii::types::global_dof_index multiplier =
+        dealii::numbers::invalid_dof_index;
+      double c = 0.; ///< NCP constant
+      double k = 0.; ///< penalty stiffness * area
     };
     struct Pair
     {
-      const ContactPairParameters *parameters;
+      const ContactPairParameters      *parameters;
       std::unique_ptr<RigidMaster<dim>> master;
       std::vector<SlaveNode>            nodes; ///< locally owned nodes
     };
@@ -122,12 +129,12 @@ namespace glide
     NodeState
     state(const Pair &pair, const SlaveNode &node, const VectorType &U) const;
 
-    const Scene &           scene;
-    const Elasticity<dim> & elasticity;
-    MPI_Comm                comm;
-    std::vector<Pair>       pairs;
-    dealii::IndexSet        multipliers;
-    dealii::types::global_dof_index total_multipliers = 0;
-    double                  max_youngs_modulus        = 0.;
+    const Scene                    &scene;
+    const Elasticity<dim>          &elasticity;
+    MPI_Comm                        comm;
+    std::vector<Pair>               pairs;
+    dealii::IndexSet                multipliers;
+    dealii::types::global_dof_index total_multipliers  = 0;
+    double                          max_youngs_modulus = 0.;
   };
 } // namespace glide

@@ -17,10 +17,10 @@ namespace glide
   /// The kinds of master surface.
   enum class MasterType
   {
-    surface,       ///< a surface of a deformable body (not available yet)
-    rigid_plane,   ///< analytical rigid line (2D) or plane (3D)
-    rigid_circle,  ///< analytical rigid circle (2D) or cylinder along z (3D)
-    rigid_sphere   ///< analytical rigid sphere (3D; a circle in 2D)
+    surface,      ///< a surface of a deformable body (not available yet)
+    rigid_plane,  ///< analytical rigid line (2D) or plane (3D)
+    rigid_circle, ///< analytical rigid circle (2D) or cylinder along z (3D)
+    rigid_sphere  ///< analytical rigid sphere (3D; a circle in 2D)
   };
 
   /**
@@ -39,7 +39,7 @@ namespace glide
     // Rigid master geometry (reference configuration) and motion.
     std::vector<double> point{0., 0., 0.};  ///< plane point / circle center
     std::vector<double> normal{0., 1., 0.}; ///< plane normal, towards the slave
-    double              radius = 1.;
+    double              radius       = 1.;
     bool                slave_inside = false; ///< slave inside circle/sphere
     std::string         translation;          ///< u(t), ';'-separated
     std::string         rotation = "0";       ///< angle(t) in radians
@@ -57,7 +57,7 @@ namespace glide
     declare_parameters(dealii::ParameterHandler &prm);
     void
     parse_parameters(dealii::ParameterHandler &prm,
-                     const std::string &       name,
+                     const std::string        &name,
                      const unsigned int        dim);
   };
 } // namespace glide

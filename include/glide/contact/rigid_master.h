@@ -33,7 +33,8 @@ namespace glide
     };
 
     /// @p parameter_path names the pair in error messages.
-    RigidMaster(const ContactPairParameters &parameters, const std::string &parameter_path);
+    RigidMaster(const ContactPairParameters &parameters,
+                const std::string           &parameter_path);
 
     /// Move the master to load factor @p t.
     void

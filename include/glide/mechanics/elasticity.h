@@ -14,9 +14,11 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -50,10 +52,24 @@ namespace glide
   public:
     Elasticity(const Scene &scene, MPI_Comm comm, dealii::TimerOutput &timer);
 
-    /// Mesh, DoFs, constraints, sparsity; checks every surface name and
+    /// Mesh, DoFs, boundary conditions; checks every surface name and
     /// function of the scene (InputError) before anything is computed.
     void
     setup();
+
+    /// Constraints and the sparsity pattern of the whole system: the
+    /// displacement DoFs plus the @p extra unknowns (contact multipliers,
+    /// numbered after the displacements); @p add_couplings adds their
+    /// couplings to the pattern.
+    void
+    setup_system(const dealii::IndexSet &extra = dealii::IndexSet(),
+                 const std::function<void(dealii::DynamicSparsityPattern &)>
+                   &add_couplings = {});
+
+    /// The displacement part of @p U with ghost entries, for evaluation
+    /// on cells.
+    VectorType
+    ghosted_displacement(const VectorType &U) const;
 
     /// Constraints with the prescribed values at load factor @p t.
     dealii::AffineConstraints<double>
@@ -111,13 +127,21 @@ namespace glide
     {
       return *mapping;
     }
+    /// Unknowns of the whole system owned by this process.
     const dealii::IndexSet &
     locally_owned() const
     {
+      return owned_total;
+    }
+    /// Displacement DoFs owned by this process.
+    const dealii::IndexSet &
+    displacement_owned() const
+    {
       return owned;
     }
+    /// Displacement DoFs this process needs (owned and ghost).
     const dealii::IndexSet &
-    locally_relevant() const
+    displacement_relevant() const
     {
       return relevant;
     }
@@ -203,11 +227,12 @@ namespace glide
     std::unique_ptr<dealii::Mapping<dim>>             mapping;
     dealii::DoFHandler<dim>                           dof_handler;
     dealii::IndexSet                                  owned, relevant;
-    dealii::AffineConstraints<double>                 homogeneous_constraints;
-    dealii::AffineConstraints<double>                 hanging_node_constraints;
-    MatrixType                                        pattern_matrix;
-    std::vector<Load>                                 dirichlet, surface_loads;
-    std::vector<PointForce>                           point_forces;
+    dealii::IndexSet                  owned_total, relevant_total;
+    dealii::AffineConstraints<double> homogeneous_constraints;
+    dealii::AffineConstraints<double> hanging_node_constraints;
+    MatrixType                        pattern_matrix;
+    std::vector<Load>                 dirichlet, surface_loads;
+    std::vector<PointForce>           point_forces;
     std::vector<std::unique_ptr<dealii::FunctionParser<dim>>> body_forces;
     std::unique_ptr<ManufacturedSolution<dim>>                exact;
     std::vector<dealii::types::boundary_id>                   symmetry_ids[3];

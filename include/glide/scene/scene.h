@@ -1,5 +1,6 @@
 #pragma once
 
+#include <glide/contact/contact_parameters.h>
 #include <glide/material/material.h>
 #include <glide/mechanics/boundary_conditions.h>
 #include <glide/mesh/mesh_parameters.h>
@@ -55,6 +56,7 @@ namespace glide
     std::vector<BodyParameters>              bodies;
     std::vector<BoundaryConditionParameters> boundary_conditions;
     std::vector<NodeSetParameters>           node_sets;
+    std::vector<ContactPairParameters>       contact_pairs;
     /// Name of the manufactured solution for verification, or "none".
     std::string manufactured_solution = "none";
 
@@ -86,7 +88,8 @@ namespace glide
     declare_parameters(dealii::ParameterHandler       &prm,
                        const std::vector<std::string> &bodies,
                        const std::vector<std::string> &boundary_conditions,
-                       const std::vector<std::string> &node_sets);
+                       const std::vector<std::string> &node_sets,
+                       const std::vector<std::string> &contact_pairs);
     void
     parse_parameters(dealii::ParameterHandler &prm);
     void

@@ -54,10 +54,17 @@ namespace glide
     NonlinearSolver(const NonlinearSolverParameters &parameters, MPI_Comm comm);
 
     /**
-     * Solve from the initial guess @p U. Residual rows are multiplied by
-     * @p residual_scale and unknowns by @p solution_scale inside KINSOL so
-     * that its tolerances are unit-free.
+     * Solve from the initial guess @p U. Residual rows are multiplied entry
+     * by entry by @p residual_scale and unknowns by @p solution_scale inside
+     * KINSOL so that its tolerances are unit-free.
      */
+    Result
+    solve(VectorType       &U,
+          const Callbacks  &callbacks,
+          const VectorType &residual_scale,
+          const VectorType &solution_scale);
+
+    /// Convenience: one scale for every row and one for every unknown.
     Result
     solve(VectorType      &U,
           const Callbacks &callbacks,
