@@ -39,7 +39,8 @@ namespace glide
                       "Where the condition acts: one or more comma-separated "
                       "surfaces <body>.<surface> (e.g. 'block.bottom, "
                       "block.left'), or for 'force' also the name of a node "
-                      "set. Reactions are reported per boundary condition.");
+                      "set (also for fixed, displacement and symmetry conditions). "
+                      "Reactions are reported per boundary condition.");
     prm.declare_entry(
       "Type",
       "fixed",

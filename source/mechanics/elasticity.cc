@@ -91,6 +91,74 @@ namespace glide
   }
 
   template <int dim>
+  std::vector<std::pair<std::array<types::global_dof_index, dim>, Point<dim>>>
+  Elasticity<dim>::find_nodes(const std::string &surface,
+                              const std::string &parameter,
+                              const bool         owned_only) const
+  {
+    std::vector<std::vector<double>> points;
+    double                           tol = 0;
+    std::set<types::boundary_id>     ids;
+    if (scene_node_sets.count(surface))
+      {
+        points = scene_node_sets.at(surface)->points;
+        tol    = scene_node_sets.at(surface)->tolerance;
+      }
+    else
+      for (const auto &name : Utilities::split_string_list(surface, ','))
+        for (const auto id : mesh.surface(name, parameter))
+          ids.insert(id);
+
+    std::vector<std::pair<std::array<types::global_dof_index, dim>, Point<dim>>> nodes;
+    std::set<types::global_dof_index> seen;
+    std::vector<unsigned int>         found(points.size(), 0);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned() || (!owned_only && cell->is_ghost()))
+        for (const auto v : cell->vertex_indices())
+          {
+            const Point<dim> x   = cell->vertex(v);
+            bool             hit = false;
+            for (unsigned int i = 0; i < points.size(); ++i)
+              {
+                Point<dim> p;
+                for (unsigned int d = 0; d < dim; ++d)
+                  p[d] = points[i][d];
+                if (x.distance(p) <= tol)
+                  {
+                    hit = true;
+                    ++found[i];
+                  }
+              }
+            if (!ids.empty())
+              for (const auto f : cell->face_indices())
+                if (cell->face(f)->at_boundary() && ids.count(cell->face(f)->boundary_id()))
+                  for (const auto fv : cell->face(f)->vertex_indices())
+                    if (cell->face(f)->vertex_index(fv) == cell->vertex_index(v))
+                      hit = true;
+            if (!hit)
+              continue;
+            std::array<types::global_dof_index, dim> dofs;
+            for (unsigned int c = 0; c < dim; ++c)
+              dofs[c] = cell->vertex_dof_index(v, c);
+            if ((!owned_only || owned.is_element(dofs[0])) && seen.insert(dofs[0]).second)
+              nodes.emplace_back(dofs, x);
+          }
+    for (unsigned int i = 0; i < points.size(); ++i)
+      {
+        std::ostringstream p;
+        for (const auto c : points[i])
+          p << (&c == &points[i][0] ? "" : ", ") << c;
+        require(Utilities::MPI::sum(found[i], comm) > 0,
+                "Node set '" + surface + "': no mesh vertex within " + std::to_string(tol) +
+                  " of the point (" + p.str() + "); check 'Node set " + surface +
+                  "/Points' or raise its 'Tolerance'.");
+      }
+    require(Utilities::MPI::sum(static_cast<unsigned int>(nodes.size()), comm) > 0,
+            "Parameter '" + parameter + "' = '" + surface + "' selects no node.");
+    return nodes;
+  }
+
+  template <int dim>
   void
   Elasticity<dim>::setup()
   {
@@ -124,9 +192,8 @@ namespace glide
           nullptr :
           parse_function(b.body_force, dim, "Body " + b.name + "/Body force"));
 
-    std::map<std::string, const NodeSetParameters *> node_sets;
     for (const auto &ns : scene.node_sets)
-      node_sets[ns.name] = &ns;
+      scene_node_sets[ns.name] = &ns;
 
     dof_handler.distribute_dofs(fe);
     owned = dof_handler.locally_owned_dofs();
@@ -139,79 +206,27 @@ namespace glide
           {
             PointForce pf;
             pf.function = parse_function(bc.function, dim, path + "/Function");
-            std::vector<std::vector<double>> points;
-            double                           tol = 0;
-            std::set<types::boundary_id>     ids;
-            if (node_sets.count(bc.surface))
-              {
-                points = node_sets[bc.surface]->points;
-                tol    = node_sets[bc.surface]->tolerance;
-              }
-            else
-              for (const auto &name :
-                   Utilities::split_string_list(bc.surface, ','))
-                for (const auto id : mesh.surface(name, path + "/Surface"))
-                  ids.insert(id);
-            std::set<types::global_dof_index> seen;
-            std::vector<unsigned int>         found(points.size(), 0);
-            for (const auto &cell : dof_handler.active_cell_iterators())
-              if (cell->is_locally_owned())
-                for (const auto v : cell->vertex_indices())
-                  {
-                    const Point<dim> x   = cell->vertex(v);
-                    bool             hit = false;
-                    for (unsigned int i = 0; i < points.size(); ++i)
-                      {
-                        Point<dim> p;
-                        for (unsigned int d = 0; d < dim; ++d)
-                          p[d] = points[i][d];
-                        if (x.distance(p) <= tol)
-                          {
-                            hit = true;
-                            ++found[i];
-                          }
-                      }
-                    if (!ids.empty())
-                      for (const auto f : cell->face_indices())
-                        if (cell->face(f)->at_boundary() &&
-                            ids.count(cell->face(f)->boundary_id()))
-                          for (const auto fv : cell->face(f)->vertex_indices())
-                            if (cell->face(f)->vertex_index(fv) ==
-                                cell->vertex_index(v))
-                              hit = true;
-                    if (!hit)
-                      continue;
-                    std::array<types::global_dof_index, dim> dofs;
-                    for (unsigned int c = 0; c < dim; ++c)
-                      dofs[c] = cell->vertex_dof_index(v, c);
-                    if (owned.is_element(dofs[0]) &&
-                        seen.insert(dofs[0]).second)
-                      pf.nodes.emplace_back(dofs, x);
-                  }
-            for (unsigned int i = 0; i < points.size(); ++i)
-              {
-                std::ostringstream p;
-                for (const auto c : points[i])
-                  p << (&c == &points[i][0] ? "" : ", ") << c;
-                require(Utilities::MPI::sum(found[i], comm) > 0,
-                        "Node set '" + bc.surface +
-                          "': no mesh vertex within " + std::to_string(tol) +
-                          " of the point (" + p.str() + "); check 'Node set " +
-                          bc.surface + "/Points' or raise its 'Tolerance'.");
-              }
-            require(Utilities::MPI::sum(
-                      static_cast<unsigned int>(pf.nodes.size()), comm) > 0,
-                    "Parameter '" + path + "/Surface' = '" + bc.surface +
-                      "' selects no node.");
+            pf.nodes = find_nodes(bc.surface, path + "/Surface", true);
             point_forces.push_back(std::move(pf));
             continue;
           }
 
         Load load;
         load.parameters = &bc;
-        for (const auto &name : Utilities::split_string_list(bc.surface, ','))
-          for (const auto id : mesh.surface(name, path + "/Surface"))
-            load.ids.insert(id);
+        if (scene_node_sets.count(bc.surface))
+          {
+            require(bc.is_dirichlet(),
+                    "Parameter '" + path + "/Surface' = '" + bc.surface +
+                      "' is a node set; a " +
+                      std::string(bc.type == BoundaryConditionType::pressure ? "pressure" : "traction") +
+                      " needs a surface <body>.<surface>.");
+            // Every process needs the constraints of its ghost DoFs too.
+            load.nodes = find_nodes(bc.surface, path + "/Surface", false);
+          }
+        else
+          for (const auto &name : Utilities::split_string_list(bc.surface, ','))
+            for (const auto id : mesh.surface(name, path + "/Surface"))
+              load.ids.insert(id);
         if (bc.type == BoundaryConditionType::displacement && !exact)
           load.function = parse_function(bc.function, dim, path + "/Function");
         if (bc.type == BoundaryConditionType::traction)
@@ -342,6 +357,22 @@ namespace glide
                 d.function->set_time(t);
                 f = d.function.get();
               }
+          }
+        if (!d.nodes.empty())
+          {
+            Vector<double> value(dim);
+            for (const auto &[node_dofs, x] : d.nodes)
+              {
+                f->vector_value(x, value);
+                for (unsigned int comp = 0; comp < dim; ++comp)
+                  if (mask[comp] && c.can_store_line(node_dofs[comp]) &&
+                      !c.is_constrained(node_dofs[comp]))
+                    {
+                      c.add_line(node_dofs[comp]);
+                      c.set_inhomogeneity(node_dofs[comp], value[comp]);
+                    }
+              }
+            continue;
           }
         for (const auto id : d.ids)
           functions[id] = f;
@@ -597,9 +628,18 @@ namespace glide
         const std::string &name = d.parameters->name;
         // Only the components this condition constrains.
         const ComponentMask mask = component_mask(*d.parameters);
-        const IndexSet      dofs =
-          DoFTools::extract_boundary_dofs(dof_handler, mask, d.ids);
-        Tensor<1, dim>                       sum;
+        Tensor<1, dim>      sum;
+        if (!d.nodes.empty())
+          {
+            // A node set: its owned vertex DoFs.
+            for (const auto &[node_dofs, x] : d.nodes)
+              for (unsigned int c = 0; c < dim; ++c)
+                if (mask[c] && owned.is_element(node_dofs[c]))
+                  sum[c] += F(node_dofs[c]);
+            result[name] = Utilities::MPI::sum(sum, comm);
+            continue;
+          }
+        const IndexSet dofs = DoFTools::extract_boundary_dofs(dof_handler, mask, d.ids);
         std::vector<types::global_dof_index> local_dofs(fe.n_dofs_per_cell());
         std::set<types::global_dof_index>    counted;
         for (const auto &cell : dof_handler.active_cell_iterators())

@@ -454,7 +454,8 @@ namespace glide
                   point[d] = 0.5 * (m.lower_corner[d] + m.upper_corner[d]);
               const double r0 =
                 m.refinement_radius > 0 ? m.refinement_radius : 0.25 * size;
-              const double r       = r0 / std::pow(2., level);
+              const double r =
+                std::max(r0 / std::pow(2., level), m.minimum_refinement_radius);
               Point<dim>   nearest = point;
               if (dim == 3 && (m.type == "hertz" || m.type == "half cylinder"))
                 nearest[2] =

@@ -247,6 +247,8 @@ namespace glide
     prm.leave_subsection();
 
     nonlinear_solver.parse_parameters(prm);
+    if (nonlinear_solver.strategy == "automatic")
+      nonlinear_solver.strategy = contact_pairs.empty() ? "line search" : "newton";
     linear_solver.parse_parameters(prm);
     load_stepping.parse_parameters(prm);
     output.parse_parameters(prm);
@@ -271,7 +273,8 @@ namespace glide
                 "Parameter '" + path +
                   "' is empty; name a surface as <body>.<surface>, e.g. "
                   "'block.bottom'.");
-        if (bc.type == BoundaryConditionType::force &&
+        // Forces and Dirichlet conditions may act on a node set.
+        if ((bc.type == BoundaryConditionType::force || bc.is_dirichlet()) &&
             node_set_names.count(bc.surface) > 0)
           continue;
         for (const auto &surface :

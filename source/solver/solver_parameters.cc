@@ -10,10 +10,14 @@ namespace glide
   {
     prm.enter_subsection("Nonlinear solver");
     prm.declare_entry("Strategy",
-                      "line search",
-                      Patterns::Selection("newton|line search"),
+                      "automatic",
+                      Patterns::Selection("automatic|newton|line search"),
                       "KINSOL strategy: 'newton' takes full Newton steps, "
-                      "'line search' backtracks when the residual grows.");
+                      "'line search' backtracks when the residual grows. "
+                      "automatic: newton in scenes with contact (the "
+                      "complementarity function is only semismooth, and "
+                      "KINSOL's line search stalls at active-set changes), "
+                      "line search otherwise.");
     prm.declare_entry("Tolerance",
                       "1e-10",
                       Patterns::Double(0.),

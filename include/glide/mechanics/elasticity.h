@@ -190,6 +190,10 @@ namespace glide
     {
       const BoundaryConditionParameters           *parameters;
       std::set<dealii::types::boundary_id>         ids;
+      /// For conditions on a node set: vertex DoFs and positions.
+      std::vector<std::pair<std::array<dealii::types::global_dof_index, dim>,
+                            dealii::Point<dim>>>
+        nodes;
       std::unique_ptr<dealii::FunctionParser<dim>> function;
     };
     struct PointForce
@@ -208,6 +212,16 @@ namespace glide
              VectorType                              *F,
              MatrixType                              *J,
              const dealii::AffineConstraints<double> &constraints) const;
+
+    /// Vertices of a node set or of surfaces (comma-separated
+    /// <body>.<surface>), with their DoFs; only vertices with owned DoFs if
+    /// @p owned_only, else also those of ghost cells. Throws InputError for
+    /// node-set points that match no vertex.
+    std::vector<std::pair<std::array<dealii::types::global_dof_index, dim>,
+                          dealii::Point<dim>>>
+    find_nodes(const std::string &surface,
+               const std::string &parameter,
+               const bool         owned_only) const;
 
     /// The displacement components a Dirichlet condition prescribes.
     dealii::ComponentMask
@@ -236,6 +250,7 @@ namespace glide
     std::vector<std::unique_ptr<dealii::FunctionParser<dim>>> body_forces;
     std::unique_ptr<ManufacturedSolution<dim>>                exact;
     std::vector<dealii::types::boundary_id>                   symmetry_ids[3];
+    std::map<std::string, const NodeSetParameters *> scene_node_sets;
     double max_youngs_modulus = 1., reference_area = 1.;
     bool   axisymmetric;
   };

@@ -9,8 +9,9 @@ namespace glide
   /// Settings of the KINSOL-driven Newton iteration of each load step.
   struct NonlinearSolverParameters
   {
-    /// Newton with full steps, or with KINSOL's line search.
-    std::string strategy = "line search";
+    /// "newton" (full steps), "line search", or "automatic" (newton with
+    /// contact, line search without).
+    std::string strategy = "automatic";
     /// Stop when the scaled max-norm of the residual is below this. The
     /// residual is scaled by 1 / (E_max * A_ref), A_ref the mean boundary
     /// facet measure, so the tolerance is unit-free (a strain-like number).
