@@ -33,14 +33,15 @@ namespace glide
   void
   BoundaryConditionParameters::declare_parameters(ParameterHandler &prm)
   {
-    prm.declare_entry("Surface",
-                      "",
-                      Patterns::Anything(),
-                      "Where the condition acts: one or more comma-separated "
-                      "surfaces <body>.<surface> (e.g. 'block.bottom, "
-                      "block.left'), or for 'force' also the name of a node "
-                      "set (also for fixed, displacement and symmetry conditions). "
-                      "Reactions are reported per boundary condition.");
+    prm.declare_entry(
+      "Surface",
+      "",
+      Patterns::Anything(),
+      "Where the condition acts: one or more comma-separated "
+      "surfaces <body>.<surface> (e.g. 'block.bottom, "
+      "block.left'), or for 'force' also the name of a node "
+      "set (also for fixed, displacement and symmetry conditions). "
+      "Reactions are reported per boundary condition.");
     prm.declare_entry(
       "Type",
       "fixed",

@@ -109,7 +109,8 @@ namespace glide
         for (const auto id : mesh.surface(name, parameter))
           ids.insert(id);
 
-    std::vector<std::pair<std::array<types::global_dof_index, dim>, Point<dim>>> nodes;
+    std::vector<std::pair<std::array<types::global_dof_index, dim>, Point<dim>>>
+                                      nodes;
     std::set<types::global_dof_index> seen;
     std::vector<unsigned int>         found(points.size(), 0);
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -131,16 +132,19 @@ namespace glide
               }
             if (!ids.empty())
               for (const auto f : cell->face_indices())
-                if (cell->face(f)->at_boundary() && ids.count(cell->face(f)->boundary_id()))
+                if (cell->face(f)->at_boundary() &&
+                    ids.count(cell->face(f)->boundary_id()))
                   for (const auto fv : cell->face(f)->vertex_indices())
-                    if (cell->face(f)->vertex_index(fv) == cell->vertex_index(v))
+                    if (cell->face(f)->vertex_index(fv) ==
+                        cell->vertex_index(v))
                       hit = true;
             if (!hit)
               continue;
             std::array<types::global_dof_index, dim> dofs;
             for (unsigned int c = 0; c < dim; ++c)
               dofs[c] = cell->vertex_dof_index(v, c);
-            if ((!owned_only || owned.is_element(dofs[0])) && seen.insert(dofs[0]).second)
+            if ((!owned_only || owned.is_element(dofs[0])) &&
+                seen.insert(dofs[0]).second)
               nodes.emplace_back(dofs, x);
           }
     for (unsigned int i = 0; i < points.size(); ++i)
@@ -149,12 +153,15 @@ namespace glide
         for (const auto c : points[i])
           p << (&c == &points[i][0] ? "" : ", ") << c;
         require(Utilities::MPI::sum(found[i], comm) > 0,
-                "Node set '" + surface + "': no mesh vertex within " + std::to_string(tol) +
-                  " of the point (" + p.str() + "); check 'Node set " + surface +
+                "Node set '" + surface + "': no mesh vertex within " +
+                  std::to_string(tol) + " of the point (" + p.str() +
+                  "); check 'Node set " + surface +
                   "/Points' or raise its 'Tolerance'.");
       }
-    require(Utilities::MPI::sum(static_cast<unsigned int>(nodes.size()), comm) > 0,
-            "Parameter '" + parameter + "' = '" + surface + "' selects no node.");
+    require(Utilities::MPI::sum(static_cast<unsigned int>(nodes.size()), comm) >
+              0,
+            "Parameter '" + parameter + "' = '" + surface +
+              "' selects no node.");
     return nodes;
   }
 
@@ -206,7 +213,7 @@ namespace glide
           {
             PointForce pf;
             pf.function = parse_function(bc.function, dim, path + "/Function");
-            pf.nodes = find_nodes(bc.surface, path + "/Surface", true);
+            pf.nodes    = find_nodes(bc.surface, path + "/Surface", true);
             point_forces.push_back(std::move(pf));
             continue;
           }
@@ -218,7 +225,9 @@ namespace glide
             require(bc.is_dirichlet(),
                     "Parameter '" + path + "/Surface' = '" + bc.surface +
                       "' is a node set; a " +
-                      std::string(bc.type == BoundaryConditionType::pressure ? "pressure" : "traction") +
+                      std::string(bc.type == BoundaryConditionType::pressure ?
+                                    "pressure" :
+                                    "traction") +
                       " needs a surface <body>.<surface>.");
             // Every process needs the constraints of its ghost DoFs too.
             load.nodes = find_nodes(bc.surface, path + "/Surface", false);
@@ -639,7 +648,8 @@ namespace glide
             result[name] = Utilities::MPI::sum(sum, comm);
             continue;
           }
-        const IndexSet dofs = DoFTools::extract_boundary_dofs(dof_handler, mask, d.ids);
+        const IndexSet dofs =
+          DoFTools::extract_boundary_dofs(dof_handler, mask, d.ids);
         std::vector<types::global_dof_index> local_dofs(fe.n_dofs_per_cell());
         std::set<types::global_dof_index>    counted;
         for (const auto &cell : dof_handler.active_cell_iterators())

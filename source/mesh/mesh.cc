@@ -456,7 +456,7 @@ namespace glide
                 m.refinement_radius > 0 ? m.refinement_radius : 0.25 * size;
               const double r =
                 std::max(r0 / std::pow(2., level), m.minimum_refinement_radius);
-              Point<dim>   nearest = point;
+              Point<dim> nearest = point;
               if (dim == 3 && (m.type == "hertz" || m.type == "half cylinder"))
                 nearest[2] =
                   cell->center()[2]; // refine along the line of contact

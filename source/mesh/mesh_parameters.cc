@@ -137,12 +137,13 @@ namespace glide
                       Patterns::Double(0.),
                       "Radius of the first local refinement level (length "
                       "units). 0: a quarter of the body's size.");
-    prm.declare_entry("Minimum refinement radius",
-                      "0",
-                      Patterns::Double(0.),
-                      "The radius of level k is max(Refinement radius / 2^k, this): "
-                      "set it to the size of the zone that must be resolved "
-                      "uniformly by the finest cells (e.g. twice a contact zone).");
+    prm.declare_entry(
+      "Minimum refinement radius",
+      "0",
+      Patterns::Double(0.),
+      "The radius of level k is max(Refinement radius / 2^k, this): "
+      "set it to the size of the zone that must be resolved "
+      "uniformly by the finest cells (e.g. twice a contact zone).");
     prm.leave_subsection();
   }
 
@@ -195,10 +196,10 @@ namespace glide
     prm.leave_subsection();
 
     prm.enter_subsection("Refinement");
-    global_refinements = prm.get_integer("Global refinements");
-    local_refinements  = prm.get_integer("Local refinements");
-    refinement_point   = get_point(prm, "Refinement point", dim, 0.);
-    refinement_radius  = prm.get_double("Refinement radius");
+    global_refinements        = prm.get_integer("Global refinements");
+    local_refinements         = prm.get_integer("Local refinements");
+    refinement_point          = get_point(prm, "Refinement point", dim, 0.);
+    refinement_radius         = prm.get_double("Refinement radius");
     minimum_refinement_radius = prm.get_double("Minimum refinement radius");
     prm.leave_subsection();
 

@@ -248,7 +248,8 @@ namespace glide
 
     nonlinear_solver.parse_parameters(prm);
     if (nonlinear_solver.strategy == "automatic")
-      nonlinear_solver.strategy = contact_pairs.empty() ? "line search" : "newton";
+      nonlinear_solver.strategy =
+        contact_pairs.empty() ? "line search" : "newton";
     linear_solver.parse_parameters(prm);
     load_stepping.parse_parameters(prm);
     output.parse_parameters(prm);

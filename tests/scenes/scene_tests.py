@@ -248,6 +248,42 @@ def case_two_bodies_carry_their_weight():
     check(0.98 * math.pi / 2 * 0.01 < w < math.pi / 2 * 0.01, f"half-cylinder weight {w:.6g} just below {math.pi / 200:.6g}")
 
 
+def case_rigid_punch():
+    """Issue 3 (P1.4, P2.3): a rigid circular punch pressed 0.05 into a
+    block. Hard contact: no slave node penetrates (max penetration 0 to
+    round-off), and the bottom reaction balances the contact force exactly
+    (global equilibrium). Penalty contact: the same balance, a small
+    penetration (positive, below 2 % of the indentation), and a contact
+    force within 5 % of the hard one (the penalty layer is slightly soft).
+    Both converge in at most 10 Newton iterations per step."""
+    punch = os.path.join(ROOT, "parameters", "rigid-punch.prm")
+    hard, log, _ = run(punch, "Output/Write VTU=false", name="hard")
+    check("contact pair punch" in log, "the log lists the contact pair")
+    pen, _, _ = run(punch, "Output/Write VTU=false", "Contact pair punch/Enforcement=penalty", name="penalty")
+    for rows, what in ((hard, "hard"), (pen, "penalty")):
+        for r in rows:
+            close(r["reaction_bottom_y"], -r["contact_punch_force_y"], 1e-9, f"{what}: balance at t={r['load_factor']}")
+            check(r["kinsol_iterations"] <= 10, f"{what}: {int(r['kinsol_iterations'])} iterations at t={r['load_factor']}")
+    check(hard[-1]["contact_punch_max_penetration"] <= 1e-12, "hard: no penetration")
+    check(hard[-1]["contact_punch_active"] >= 3, f"hard: {int(hard[-1]['contact_punch_active'])} closed nodes")
+    check(0 < pen[-1]["contact_punch_max_penetration"] < 0.02 * 0.05,
+          f"penalty: penetration {pen[-1]['contact_punch_max_penetration']:.3g} small but positive")
+    close(pen[-1]["contact_punch_force_y"], hard[-1]["contact_punch_force_y"], 0.05, "penalty force near hard force")
+
+
+def case_contact_mpi_matches_serial():
+    """P7.1 with contact: the rigid punch on two processes gives the serial
+    statistics (iterations, contact force, active set) to solver tolerance."""
+    punch = os.path.join(ROOT, "parameters", "rigid-punch.prm")
+    serial, _, _ = run(punch, "Output/Write VTU=false", name="serial")
+    parallel, log, _ = run(punch, "Output/Write VTU=false", name="parallel", mpi=True)
+    check("on 2 process(es)" in log, "ran on two processes")
+    for s, p in zip(serial, parallel):
+        check(s["kinsol_iterations"] == p["kinsol_iterations"], f"step {int(s['step'])}: same iterations")
+        check(s["contact_punch_active"] == p["contact_punch_active"], f"step {int(s['step'])}: same active set size")
+        close(p["contact_punch_force_y"], s["contact_punch_force_y"], 1e-8, f"step {int(s['step'])}: same contact force")
+
+
 def case_amg_matches_direct():
     """P3.3: GMRES with ML AMG (rigid-body modes as near null space) and the
     direct solver give the same answer to solver tolerance on a 3D block,

@@ -188,12 +188,12 @@ namespace glide
   private:
     struct Load
     {
-      const BoundaryConditionParameters           *parameters;
-      std::set<dealii::types::boundary_id>         ids;
+      const BoundaryConditionParameters   *parameters;
+      std::set<dealii::types::boundary_id> ids;
       /// For conditions on a node set: vertex DoFs and positions.
       std::vector<std::pair<std::array<dealii::types::global_dof_index, dim>,
                             dealii::Point<dim>>>
-        nodes;
+                                                   nodes;
       std::unique_ptr<dealii::FunctionParser<dim>> function;
     };
     struct PointForce
@@ -250,7 +250,7 @@ namespace glide
     std::vector<std::unique_ptr<dealii::FunctionParser<dim>>> body_forces;
     std::unique_ptr<ManufacturedSolution<dim>>                exact;
     std::vector<dealii::types::boundary_id>                   symmetry_ids[3];
-    std::map<std::string, const NodeSetParameters *> scene_node_sets;
+    std::map<std::string, const NodeSetParameters *>          scene_node_sets;
     double max_youngs_modulus = 1., reference_area = 1.;
     bool   axisymmetric;
   };

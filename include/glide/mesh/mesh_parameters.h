@@ -35,7 +35,7 @@ namespace glide
     unsigned int        global_refinements = 0;
     unsigned int        local_refinements  = 0;
     std::vector<double> refinement_point;
-    double              refinement_radius = 0.;
+    double              refinement_radius         = 0.;
     double              minimum_refinement_radius = 0.;
 
     /// Names of the built-in builders, '|'-separated, for Patterns::Selection.

@@ -1,0 +1,274 @@
+// Unit tests of the contact part (issue 3, R5.1, P1.4, P2.3). Why the
+// expected answers are right: analytical rigid masters have closed-form
+// gaps and normals (distance to a line, a circle, a sphere); a rigid motion
+// moves them as it says; the contact Jacobian must be the derivative of the
+// contact residual, checked against central finite differences for hard
+// and penalty enforcement on flat and curved masters, in 2D and 3D, in
+// states with open and closed nodes.
+#include <glide/contact/contact.h>
+#include <glide/mechanics/elasticity.h>
+#include <glide/scene/input_error.h>
+
+#include <deal.II/base/timer.h>
+
+#include "test_helpers.h"
+#include <gtest/gtest.h>
+
+#include <random>
+#include <sstream>
+
+using namespace dealii;
+using namespace glide;
+
+namespace
+{
+  ContactPairParameters
+  rigid(const MasterType type, const bool inside = false)
+  {
+    ContactPairParameters p;
+    p.master_type  = type;
+    p.point        = {1., 2., 0.};
+    p.normal       = {0., 2., 0.};
+    p.radius       = 0.5;
+    p.slave_inside = inside;
+    return p;
+  }
+} // namespace
+
+TEST(RigidMaster, PlaneGapAndNormal)
+{
+  RigidMaster<2> m(rigid(MasterType::rigid_plane), "pair");
+  const auto     p = m.project(Point<2>(3., 2.5));
+  EXPECT_NEAR(p.gap, 0.5, 1e-14);
+  EXPECT_NEAR(p.normal[1], 1., 1e-14);
+  EXPECT_NEAR(p.closest_point[1], 2., 1e-14);
+  EXPECT_NEAR(p.curvature.norm(), 0., 1e-14);
+}
+
+TEST(RigidMaster, CircleOutsideAndInside)
+{
+  RigidMaster<2> out(rigid(MasterType::rigid_circle), "pair");
+  const auto     p = out.project(Point<2>(1., 3.));
+  EXPECT_NEAR(p.gap, 0.5, 1e-14);
+  EXPECT_NEAR(p.normal[1], 1., 1e-14);
+  // d2g/dx2 = (I - n n) / r: only the tangential direction.
+  EXPECT_NEAR(p.curvature[0][0], 1., 1e-14);
+  EXPECT_NEAR(p.curvature[1][1], 0., 1e-14);
+  RigidMaster<2> in(rigid(MasterType::rigid_circle, true), "pair");
+  const auto     q = in.project(Point<2>(1.3, 2.));
+  EXPECT_NEAR(q.gap, 0.2, 1e-14);
+  EXPECT_NEAR(q.normal[0], -1., 1e-14);
+}
+
+TEST(RigidMaster, CylinderIgnoresTheAxialDirection)
+{
+  RigidMaster<3> m(rigid(MasterType::rigid_circle), "pair");
+  const auto     p = m.project(Point<3>(1., 3., 7.));
+  EXPECT_NEAR(p.gap, 0.5, 1e-14);
+  EXPECT_NEAR(p.normal[2], 0., 1e-14);
+  EXPECT_NEAR(p.curvature[2][2], 0., 1e-14);
+  RigidMaster<3> s(rigid(MasterType::rigid_sphere), "pair");
+  EXPECT_NEAR(s.project(Point<3>(1., 2., 3.)).gap, 2.5, 1e-14);
+}
+
+TEST(RigidMaster, PrescribedMotion)
+{
+  auto p            = rigid(MasterType::rigid_plane);
+  p.translation     = "0; -t";
+  p.rotation        = "pi/2*t";
+  p.rotation_center = {1., 2., 0.};
+  RigidMaster<2> m(p, "pair");
+  m.set_time(1.);
+  // The plane through (1, 2) with normal (0, 1), rotated by 90 degrees about
+  // (1, 2) and moved down by 1: through (1, 1) with normal (-1, 0).
+  const auto q = m.project(Point<2>(0., 5.));
+  EXPECT_NEAR(q.normal[0], -1., 1e-12);
+  EXPECT_NEAR(q.gap, 1., 1e-12);
+}
+
+TEST(RigidMaster, NormalUndefinedAtTheCenterIsReported)
+{
+  RigidMaster<2> m(rigid(MasterType::rigid_circle), "pair");
+  EXPECT_THROW(m.project(Point<2>(1., 2.)), std::runtime_error);
+}
+
+namespace
+{
+  std::string
+  contact_scene(const bool         three,
+                const std::string &master,
+                const std::string &enforcement)
+  {
+    std::ostringstream s;
+    s << "set Dimension = " << (three ? 3 : 2)
+      << "\nset Analysis type = " << (three ? "3d" : "plane strain")
+      << "\nset Boundary conditions = hold\nset Contact pairs = pair\n"
+      << "subsection Body body\n  subsection Block\n    set Lower corner = "
+      << (three ? "0, 0, 0" : "0, 0")
+      << "\n    set Upper corner = " << (three ? "1, 1, 1" : "1, 1")
+      << "\n    set Subdivisions = " << (three ? "2, 2, 2" : "3, 2")
+      << "\n  end\nend\n"
+      << "subsection Boundary condition hold\n  set Surface = body.bottom\n  set Type = fixed\nend\n"
+      << "subsection Contact pair pair\n  set Slave = body.top\n  set Master = "
+      << master << "\n  set Enforcement = " << enforcement
+      << "\n  subsection Rigid master\n    set Point = "
+      << (master == "rigid plane" ? (three ? "0.5, 1.0, 0.5" : "0.5, 1.0") :
+                                    (three ? "0.5, 1.95, 0.5" : "0.5, 1.95"))
+      << "\n    set Normal = " << (three ? "0.1, -1, 0.2" : "0.1, -1")
+      << "\n    set Radius = 1.0\n  end\nend\n";
+    return s.str();
+  }
+
+  template <int dim>
+  void
+  check_contact_jacobian(const std::string &master,
+                         const std::string &enforcement)
+  {
+    const Scene scene = Scene::read(
+      glide_test::write_file("contact_" + master.substr(6) + enforcement +
+                               std::to_string(dim) + ".prm",
+                             contact_scene(dim == 3, master, enforcement)));
+    TimerOutput     timer(MPI_COMM_WORLD,
+                      std::cout,
+                      TimerOutput::never,
+                      TimerOutput::wall_times);
+    Elasticity<dim> e(scene, MPI_COMM_WORLD, timer);
+    e.setup();
+    Contact<dim> contact(scene, e, MPI_COMM_WORLD);
+    contact.setup(e.get_dof_handler().n_dofs());
+    e.setup_system(contact.owned_multipliers(),
+                   [&](DynamicSparsityPattern &dsp) {
+                     contact.add_sparsity(dsp);
+                   });
+
+    // A state in which the master penetrates some slave nodes and not
+    // others: the tilted plane passes through (0.5, 1) on the top of the
+    // block; the circle or sphere (radius 1 about (0.5, 1.95)) dips 0.05
+    // into it around x = 0.5.
+    std::mt19937                           gen(7);
+    std::uniform_real_distribution<double> small(-0.02, 0.02), force(0., 0.05);
+    VectorType U(e.locally_owned(), MPI_COMM_WORLD), v(U);
+    for (const auto i : e.displacement_owned())
+      {
+        U[i] = small(gen);
+        v[i] = small(gen);
+      }
+    for (const auto i : contact.owned_multipliers())
+      {
+        U[i] = force(gen);
+        v[i] = force(gen);
+      }
+    U.compress(VectorOperation::insert);
+    v.compress(VectorOperation::insert);
+    e.update_constraints().distribute(U);
+    e.update_constraints().distribute(v);
+    contact.set_time(0.);
+
+    auto residual = [&](const VectorType &u, VectorType &F) {
+      F = 0;
+      contact.assemble(u, &F, nullptr);
+    };
+    MatrixType J;
+    J.reinit(e.matrix_pattern());
+    contact.assemble(U, nullptr, &J);
+    VectorType Jv(U), Fp(U), Fm(U), Up(U), Um(U);
+    J.vmult(Jv, v);
+    const double h = 1e-7;
+    Up.add(h, v);
+    Um.add(-h, v);
+    residual(Up, Fp);
+    residual(Um, Fm);
+    Fp -= Fm;
+    Fp /= 2 * h;
+    double err = 0, ref = 0;
+    for (const auto i : e.locally_owned())
+      if (!e.update_constraints().is_constrained(i))
+        {
+          err = std::max(err, std::abs(Jv[i] - Fp[i]));
+          ref = std::max(ref, std::abs(Fp[i]));
+        }
+    EXPECT_GT(ref, 0.) << master << " " << enforcement;
+    EXPECT_LT(err, 1e-6 * ref)
+      << master << " " << enforcement << " " << dim << "D";
+    // Both kinds of node occur for hard contact: the test covers the active
+    // and the inactive branch of the complementarity function.
+    const auto stats = contact.statistics(U);
+    ASSERT_EQ(stats[0].first, "contact_pair_active");
+    EXPECT_GT(std::stoi(stats[0].second), 0) << "some nodes are closed";
+  }
+} // namespace
+
+TEST(Contact, JacobianMatchesFiniteDifferences2D)
+{
+  for (const char *master : {"rigid plane", "rigid circle"})
+    for (const char *enforcement : {"hard", "penalty"})
+      check_contact_jacobian<2>(master, enforcement);
+}
+
+TEST(Contact, JacobianMatchesFiniteDifferences3D)
+{
+  for (const char *master : {"rigid plane", "rigid circle", "rigid sphere"})
+    for (const char *enforcement : {"hard", "penalty"})
+      check_contact_jacobian<3>(master, enforcement);
+}
+
+TEST(Contact, SmoothingFractionOutOfRangeNamesThePair)
+{
+  std::string text = contact_scene(false, "rigid plane", "hard");
+  text.replace(text.find("  set Enforcement"),
+               0,
+               "  set Smoothing fraction = 0.5\n");
+  try
+    {
+      Scene::read(glide_test::write_file("smoothing_range.prm", text));
+      FAIL() << "no error";
+    }
+  catch (const InputError &e)
+    {
+      const std::string m = e.what();
+      EXPECT_NE(m.find("contact pair 'pair'"), std::string::npos) << m;
+      EXPECT_NE(m.find("0 <= f < 0.5"), std::string::npos) << m;
+    }
+}
+
+TEST(Contact, SlaveThatIsItsOwnMaster)
+{
+  std::string text = contact_scene(false, "body.top", "hard");
+  try
+    {
+      Scene::read(glide_test::write_file("self_contact.prm", text));
+      FAIL() << "no error";
+    }
+  catch (const InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("both slave and master"),
+                std::string::npos)
+        << e.what();
+    }
+}
+
+TEST(Contact, UnknownSlaveSurfaceListsTheSurfaces)
+{
+  std::string text = contact_scene(false, "rigid plane", "hard");
+  text.replace(text.find("body.top"), 8, "body.lid");
+  const Scene scene =
+    Scene::read(glide_test::write_file("unknown_slave.prm", text));
+  TimerOutput   timer(MPI_COMM_WORLD,
+                    std::cout,
+                    TimerOutput::never,
+                    TimerOutput::wall_times);
+  Elasticity<2> e(scene, MPI_COMM_WORLD, timer);
+  e.setup();
+  Contact<2> contact(scene, e, MPI_COMM_WORLD);
+  try
+    {
+      contact.setup(e.get_dof_handler().n_dofs());
+      FAIL() << "no error";
+    }
+  catch (const InputError &err)
+    {
+      const std::string m = err.what();
+      EXPECT_NE(m.find("Contact pair pair/Slave"), std::string::npos) << m;
+      EXPECT_NE(m.find("body.top"), std::string::npos) << m;
+    }
+}
