@@ -161,9 +161,11 @@ namespace glide
                                                    node.dofs.end());
           if (node.multiplier != numbers::invalid_dof_index)
             idx.push_back(node.multiplier);
-          for (const auto i : idx)
-            for (const auto j : idx)
-              dsp.add(i, j);
+          // Through the constraints: a slave node at a hanging node couples
+          // with the DoFs it is constrained to.
+          elasticity.update_constraints().add_entries_local_to_global(idx,
+                                                                      dsp,
+                                                                      false);
         }
   }
 

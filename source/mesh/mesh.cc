@@ -44,8 +44,9 @@ namespace glide
         for (const auto &face : cell->face_iterators())
           if (face->at_boundary())
             {
-              const Point<dim> p    = face->center(/*respect_manifold=*/true);
-              Tensor<1, dim>   r    = p - center;
+              // A face lies on a plane or a round surface when all its
+              // vertices do (independent of the manifolds attached so far).
+              const Point<dim> p    = face->center(false);
               bool             done = false;
               if (dim == 3 && axis_is_z)
                 {
@@ -59,21 +60,37 @@ namespace glide
                       face->set_boundary_id(11); // top
                       continue;
                     }
-                  r[2] = 0;
                 }
+              auto all_vertices = [&](const auto &on_surface) {
+                for (const auto v : face->vertex_indices())
+                  if (!on_surface(face->vertex(v)))
+                    return false;
+                return true;
+              };
               for (const auto &[d, id] : planes)
-                if (!done && std::abs(p[d] - center[d]) < tol)
+                if (!done && all_vertices([&, d = d](const Point<dim> &x) {
+                      return std::abs(x[d] - center[d]) < tol;
+                    }))
                   {
                     face->set_boundary_id(id);
                     done = true;
                   }
               for (const auto &[radius, id] : radii)
-                if (!done && std::abs(r.norm() - radius) < 1e-3 * radius)
+                if (!done &&
+                    all_vertices([&, radius = radius](const Point<dim> &x) {
+                      Tensor<1, dim> r = x - center;
+                      if (dim == 3 && axis_is_z)
+                        r[2] = 0;
+                      return std::abs(r.norm() - radius) < tol;
+                    }))
                   {
                     face->set_boundary_id(id);
                     done = true;
                   }
-              Assert(done, ExcInternalError());
+              AssertThrow(done,
+                          ExcMessage(
+                            "A boundary face of a built-in mesh matched "
+                            "none of its surfaces."));
             }
     }
 
@@ -144,6 +161,23 @@ namespace glide
         }
     }
 
+    /// Put the vertex nearest to @p target exactly on it. Rotations leave
+    /// round-off in coordinates; the lowest point of a Hertz body must be
+    /// exactly where the analytical contact starts, or a force-driven body
+    /// that should touch a flat at one node floats by 1e-17 and its
+    /// stiffness matrix is singular.
+    template <int dim>
+    void
+    snap_vertex(Triangulation<dim> &tria,
+                const Point<dim>   &target,
+                const double        tolerance)
+    {
+      for (const auto &cell : tria.active_cell_iterators())
+        for (const auto v : cell->vertex_indices())
+          if (cell->vertex(v).distance(target) < tolerance)
+            cell->vertex(v) = target;
+    }
+
     /// Read the $PhysicalNames section of a Gmsh file: tag -> name for
     /// groups of dimension @p face_dim.
     std::map<types::boundary_id, std::string>
@@ -197,11 +231,51 @@ namespace glide
         for (unsigned int i = 0; i < 2 * dim; ++i)
           names[i] = n[i];
       }
+    else if (m.type == "hertz" && (dim == 3 || m.axisymmetric))
+      {
+        // The lower part of a sphere, for Hertz point contact: in an
+        // axisymmetric scene the quarter disk r >= 0, z <= center (its
+        // meridian section), in 3D the octant x >= cx, y <= cy, z >= cz
+        // (a quarter model with symmetry planes x0 and z0).
+        GridGenerator::quarter_hyper_ball(tria, Point<dim>(), m.radius);
+        if constexpr (dim == 2)
+          GridTools::rotate(-numbers::PI / 2, tria); // (x, y) -> (y, -x)
+        else
+          {
+            Tensor<1, 3> x_axis;
+            x_axis[0] = 1.;
+            GridTools::rotate(x_axis,
+                              numbers::PI / 2,
+                              tria); // (x, y, z) -> (x, -z, y)
+          }
+        GridTools::shift(Tensor<1, dim>(c), tria);
+        std::vector<std::pair<unsigned int, types::boundary_id>> planes{{1, 1},
+                                                                        {0, 2}};
+        if (dim == 3)
+          planes.emplace_back(2, 3);
+        label_round_boundary<dim>(tria, c, {{m.radius, 0}}, planes, 0., false);
+        set_curved_faces(tria, {0});
+        tria.set_manifold(0, SphericalManifold<dim>(c));
+        Point<dim> lowest = c;
+        lowest[1] -= m.radius;
+        snap_vertex(tria, lowest, 1e-8 * m.radius);
+        names[0] = "curved";
+        names[1] = "flat";
+        names[2] = dim == 2 ? "axis" : "x0";
+        if (dim == 3)
+          names[3] = "z0";
+      }
     else if (m.type == "cylinder" || m.type == "half cylinder" ||
              m.type == "hertz")
       {
         const bool half = (m.type != "cylinder");
         make_cylinder<dim>(m, tria, half);
+        if (m.type == "hertz")
+          {
+            Point<dim> lowest = c;
+            lowest[1] -= m.radius;
+            snap_vertex(tria, lowest, 1e-8 * m.radius);
+          }
         names[0] = half ? "curved" : "outer";
         if (half)
           names[1] = "flat";
@@ -457,7 +531,7 @@ namespace glide
               const double r =
                 std::max(r0 / std::pow(2., level), m.minimum_refinement_radius);
               Point<dim> nearest = point;
-              if (dim == 3 && (m.type == "hertz" || m.type == "half cylinder"))
+              if (dim == 3 && m.type == "half cylinder")
                 nearest[2] =
                   cell->center()[2]; // refine along the line of contact
               if (cell->center().distance(nearest) < r + 0.5 * cell->diameter())

@@ -218,6 +218,7 @@ namespace glide
         const std::string path = "Body " + body.name;
         prm.enter_subsection(path);
         body.mesh.parse_parameters(prm, path, directory, dimension);
+        body.mesh.axisymmetric = (analysis == AnalysisType::axisymmetric);
         body.material.parse_parameters(prm, path);
         body.body_force = prm.get("Body force");
         prm.leave_subsection();
@@ -321,7 +322,8 @@ namespace glide
             // The axisymmetric meridian plane is x = r >= 0.
             const bool centered_shape = (b.mesh.type != "block");
             if (centered_shape)
-              require(b.mesh.center[0] - (b.mesh.type == "sphere octant" ?
+              require(b.mesh.center[0] - ((b.mesh.type == "sphere octant" ||
+                                           b.mesh.type == "hertz") ?
                                             0. :
                                             b.mesh.radius) >=
                         -1e-12 * b.mesh.radius,

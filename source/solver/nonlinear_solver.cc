@@ -48,6 +48,7 @@ namespace glide
 
     Result      result;
     std::string failure; // set by a callback that failed
+    bool        setup_failed = false;
     VectorType  f_scale = residual_scale, u_scale = solution_scale;
     // Scaled max-norm ||D_F F||_inf, KINSOL's measure of convergence.
     auto scaled_norm = [&](const VectorType &F) {
@@ -77,17 +78,23 @@ namespace glide
         {
           cb.report(result.iterations, scaled_norm(F));
           ++result.iterations;
+          setup_failed = false;
           cb.setup_jacobian(u);
           return 0;
         }
       catch (const std::exception &e)
         {
-          failure = e.what();
+          // deal.II 9.4.1 ignores this return value: remember the failure
+          // so that the next linear solve refuses to run.
+          failure      = e.what();
+          setup_failed = true;
           return -1;
         }
     };
     kinsol.solve_with_jacobian =
       [&](const VectorType &rhs, VectorType &dst, const double) -> int {
+      if (setup_failed)
+        return -1;
       try
         {
           result.linear_iterations += cb.solve_jacobian(rhs, dst);

@@ -284,6 +284,33 @@ def case_contact_mpi_matches_serial():
         close(p["contact_punch_force_y"], s["contact_punch_force_y"], 1e-8, f"step {int(s['step'])}: same contact force")
 
 
+def hertz_peak(out, radial):
+    last = sorted(f for f in os.listdir(out) if f.startswith("contact-hertz-"))[-1]
+    with open(os.path.join(out, last)) as f:
+        nodes = list(csv.DictReader(f))
+    return max(float(r["CPRESS"]) for r in nodes)
+
+
+def case_hertz_axisymmetric_and_3d():
+    """Issue 3, section 6: Hertz point contact, Case S (sphere R = 1, E = 1,
+    nu = 0.3, F = 1e-3 on a rigid flat; p0 = 0.0615942 from the closed form),
+    once axisymmetric and once as a 3D quarter model. The peak nodal
+    pressure must be within 5 % of p0 on the test meshes; the contact force
+    balances the load (axisymmetric: F, the 2 pi r weighting; 3D quarter
+    model: F/4 times the discretized/exact area ratio of the loaded quarter
+    disk, so within 1 %); every step converges in at most 10 iterations."""
+    p0 = 0.0615942
+    rows, _, out = run(os.path.join(ROOT, "parameters", "hertz-axisymmetric.prm"), "Output/Write VTU=false",
+                       name="axi")
+    close(hertz_peak(out, True), p0, 0.05, "axisymmetric p0")
+    close(rows[-1]["contact_hertz_force_y"], 1e-3, 1e-8, "axisymmetric contact force = F")
+    check(all(r["kinsol_iterations"] <= 10 for r in rows), "axisymmetric: <= 10 iterations per step")
+    rows, _, out = run(os.path.join(ROOT, "parameters", "hertz-3d.prm"), "Output/Write VTU=false", name="three")
+    close(hertz_peak(out, False), p0, 0.05, "3D p0")
+    close(rows[-1]["contact_hertz_force_y"], 2.5e-4, 0.01, "3D contact force = F/4")
+    check(all(r["kinsol_iterations"] <= 10 for r in rows), "3D: <= 10 iterations per step")
+
+
 def case_amg_matches_direct():
     """P3.3: GMRES with ML AMG (rigid-body modes as near null space) and the
     direct solver give the same answer to solver tolerance on a 3D block,

@@ -181,3 +181,57 @@ TEST(Mesh, AbaqusSurfacesBecomeNumberedSurfaces)
         }
   EXPECT_EQ(top_faces, 2u);
 }
+
+TEST(Mesh, HertzBodiesAreTheLowerPartOfASphere)
+{
+  // Axisymmetric: the quarter disk r >= 0 below the center (area pi R^2/4);
+  // 3D: the sphere octant below the center (volume pi R^3/6), with the flat
+  // top a quarter disk (area pi R^2/4), and the lowest point exactly at
+  // center - R e_y.
+  std::map<types::boundary_id, std::string> names;
+  for (const unsigned int dim : {2u, 3u})
+    {
+      MeshParameters m;
+      m.type         = "hertz";
+      m.axisymmetric = (dim == 2);
+      m.center       = {0., 1., 0.};
+      m.radius       = 1.;
+      double volume = 0, flat = 0, lowest = 1;
+      if (dim == 2)
+        {
+          Triangulation<2> tria;
+          build_body_mesh<2>(m, "b", tria, names);
+          tria.refine_global(4);
+          volume = GridTools::volume(tria, MappingQ<2>(3));
+          for (const auto &v : tria.get_vertices())
+            lowest = std::min(lowest, v[1]);
+          EXPECT_NEAR(volume, numbers::PI / 4, 1e-4);
+          EXPECT_EQ(values(names),
+                    (std::set<std::string>{"curved", "flat", "axis"}));
+        }
+      else
+        {
+          Triangulation<3> tria;
+          build_body_mesh<3>(m, "b", tria, names);
+          tria.refine_global(3);
+          volume = GridTools::volume(tria, MappingQ<3>(3));
+          const MappingQ<3> mapping(3);
+          for (const auto &cell : tria.active_cell_iterators())
+            for (const auto f : cell->face_indices())
+              if (cell->face(f)->at_boundary() &&
+                  names[cell->face(f)->boundary_id()] == "flat")
+                {
+                  flat += cell->face(f)->measure();
+                  EXPECT_NEAR(cell->face(f)->center()[1], 1., 1e-12)
+                    << cell->face(f)->center();
+                }
+          for (const auto &v : tria.get_vertices())
+            lowest = std::min(lowest, v[1]);
+          EXPECT_NEAR(volume, numbers::PI / 6, 2e-3);
+          EXPECT_NEAR(flat, numbers::PI / 4, 2e-2);
+          EXPECT_EQ(values(names),
+                    (std::set<std::string>{"curved", "flat", "x0", "z0"}));
+        }
+      EXPECT_EQ(lowest, 0.);
+    }
+}

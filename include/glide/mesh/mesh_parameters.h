@@ -31,6 +31,10 @@ namespace glide
     double              inner_radius = 0.5;
     double              length       = 1.; // extent along z in 3D
 
+    /// Set by the scene: the analysis is axisymmetric ('hertz' then builds
+    /// the meridian section of a sphere).
+    bool axisymmetric = false;
+
     // Refinement of this body after the bodies have been put together.
     unsigned int        global_refinements = 0;
     unsigned int        local_refinements  = 0;
