@@ -220,10 +220,12 @@ namespace glide
             for (unsigned int d = 0; d < dim; ++d)
               row.emplace_back("reaction_" + surface + "_" + axis[d],
                                format_number(force[d]));
+          if (contact.active())
+            contact.update_slip(U, t_old, t);
           for (const auto &column : contact.statistics(U))
             row.push_back(column);
           if (contact.active())
-            contact.write_nodes(U, directory, step);
+            contact.write_nodes(U, directory, step, t, scene.output.write_vtu);
           if (scene.manufactured_solution != "none")
             {
               const auto [l2, h1] = elasticity.errors(U);

@@ -2,6 +2,7 @@
 #include <glide/output/statistics.h>
 #include <glide/scene/input_error.h>
 
+#include <deal.II/base/data_out_base.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
@@ -126,6 +127,9 @@ namespace glide
         require(n_global > 0,
                 "Contact pair '" + p.name + "': the slave surface '" + p.slave +
                   "' has no nodes.");
+        for (const auto &node : pair.nodes)
+          pair.previous_position.push_back(node.X);
+        pair.slip.assign(pair.nodes.size(), 0.);
         pairs.push_back(std::move(pair));
       }
 
@@ -307,6 +311,11 @@ namespace glide
         force = Utilities::MPI::sum(force, comm);
         for (unsigned int d = 0; d < dim; ++d)
           row.emplace_back(p + "force_" + axis[d], format_number(force[d]));
+        double max_slip = 0;
+        for (const double slip : pair.slip)
+          max_slip = std::max(max_slip, slip);
+        row.emplace_back(p + "max_slip",
+                         format_number(Utilities::MPI::max(max_slip, comm)));
         row.emplace_back(p + "max_penetration",
                          format_number(Utilities::MPI::max(penetration, comm)));
       }
@@ -315,42 +324,146 @@ namespace glide
 
   template <int dim>
   void
+  Contact<dim>::update_slip(const VectorType &U,
+                            const double      t_old,
+                            const double      t_new)
+  {
+    for (auto &pair : pairs)
+      for (unsigned int i = 0; i < pair.nodes.size(); ++i)
+        {
+          const NodeState s = state(pair, pair.nodes[i], U);
+          if (s.closed)
+            {
+              // The master point under the slave node at the start of the
+              // step, moved with the master to the end of the step.
+              const Point<dim> y_old =
+                pair.master->project(pair.previous_position[i]).closest_point;
+              const Point<dim> y_new = pair.master->move(y_old, t_old, t_new);
+              const Tensor<1, dim> relative =
+                (s.x - pair.previous_position[i]) - (y_new - y_old);
+              const Tensor<1, dim> &n = s.projection.normal;
+              pair.slip[i] += (relative - (relative * n) * n).norm();
+            }
+          pair.previous_position[i] = s.x;
+        }
+  }
+
+  template <int dim>
+  void
   Contact<dim>::write_nodes(const VectorType  &U,
                             const std::string &directory,
-                            const unsigned int step) const
+                            const unsigned int step,
+                            const double       time,
+                            const bool         vtu)
   {
-    for (const auto &pair : pairs)
+    // Per node: X (dim), x (dim), COPEN, force, CPRESS, CSTATUS, CSLIP,
+    // normal (dim).
+    const unsigned int n_values = 3 * dim + 5;
+    for (auto &pair : pairs)
       {
-        std::ostringstream rows;
-        rows.precision(12);
-        for (const auto &node : pair.nodes)
+        pair.master->set_time(time);
+        std::vector<double> local;
+        for (unsigned int i = 0; i < pair.nodes.size(); ++i)
           {
-            const NodeState s = state(pair, node, U);
+            const auto     &node = pair.nodes[i];
+            const NodeState s    = state(pair, node, U);
             for (unsigned int d = 0; d < dim; ++d)
-              rows << node.X[d] << ",";
+              local.push_back(node.X[d]);
             for (unsigned int d = 0; d < dim; ++d)
-              rows << s.x[d] << ",";
-            rows << s.projection.gap << "," << s.lambda << ","
-                 << s.lambda / node.area << "," << (s.closed ? 1 : 0) << "\n";
+              local.push_back(s.x[d]);
+            local.push_back(s.projection.gap);
+            local.push_back(s.lambda);
+            local.push_back(s.lambda / node.area);
+            local.push_back(s.closed ? 1. : 0.);
+            local.push_back(pair.slip[i]);
+            for (unsigned int d = 0; d < dim; ++d)
+              local.push_back(s.projection.normal[d]);
           }
-        const auto all = Utilities::MPI::gather(comm, rows.str(), 0);
+        const auto all = Utilities::MPI::gather(comm, local, 0);
         if (Utilities::MPI::this_mpi_process(comm) != 0)
           continue;
+
         char number[16];
         std::snprintf(number, sizeof(number), "%04u", step);
-        const std::string file = directory + "/contact-" +
-                                 pair.parameters->name + "-" + number + ".csv";
-        std::ofstream out(file + ".tmp");
-        const char   *X[] = {"X", "Y", "Z"}, *x[] = {"x", "y", "z"};
+        const std::string stem =
+          directory + "/contact-" + pair.parameters->name;
+        const char *X[] = {"X", "Y", "Z"}, *x[] = {"x", "y", "z"};
+
+        // CSV: one row per slave node.
+        {
+          std::ofstream out(stem + "-" + number + ".csv.tmp");
+          out.precision(12);
+          for (unsigned int d = 0; d < dim; ++d)
+            out << X[d] << ",";
+          for (unsigned int d = 0; d < dim; ++d)
+            out << x[d] << ",";
+          out << "COPEN,force,CPRESS,CSTATUS,CSLIP\n";
+          for (const auto &values : all)
+            for (unsigned int k = 0; k + n_values <= values.size();
+                 k += n_values)
+              for (unsigned int j = 0; j < n_values - dim; ++j)
+                out << values[k + j] << (j + 1 < n_values - dim ? "," : "\n");
+        }
+        std::rename((stem + "-" + number + ".csv.tmp").c_str(),
+                    (stem + "-" + number + ".csv").c_str());
+
+        if (!vtu)
+          continue;
+        // VTU: the slave nodes as points at their reference positions, with
+        // the contact fields and the displacement (for Warp By Vector).
+        std::vector<DataOutBase::Patch<0, dim>> patches;
+        for (const auto &values : all)
+          for (unsigned int k = 0; k + n_values <= values.size(); k += n_values)
+            {
+              DataOutBase::Patch<0, dim> patch;
+              for (unsigned int d = 0; d < dim; ++d)
+                patch.vertices[0][d] = values[k + d];
+              patch.data.reinit(5 + 2 * dim, 1);
+              for (unsigned int j = 0; j < 5; ++j)
+                patch.data(j, 0) = values[k + 2 * dim + j];
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  patch.data(5 + d, 0) = values[k + 2 * dim + 5 + d];
+                  patch.data(5 + dim + d, 0) =
+                    values[k + dim + d] - values[k + d];
+                }
+              patch.patch_index = patches.size();
+              patches.push_back(patch);
+            }
+        std::vector<std::string> names{
+          "COPEN", "contact_force", "CPRESS", "CSTATUS", "CSLIP"};
         for (unsigned int d = 0; d < dim; ++d)
-          out << X[d] << ",";
+          names.push_back("contact_normal");
         for (unsigned int d = 0; d < dim; ++d)
-          out << x[d] << ",";
-        out << "COPEN,force,CPRESS,CSTATUS\n";
-        for (const auto &r : all)
-          out << r;
-        out.close();
-        std::rename((file + ".tmp").c_str(), file.c_str());
+          names.push_back("displacement");
+        std::vector<
+          std::tuple<unsigned int,
+                     unsigned int,
+                     std::string,
+                     DataComponentInterpretation::DataComponentInterpretation>>
+                          vectors{{5,
+                                   5 + dim - 1,
+                                   "contact_normal",
+                                   DataComponentInterpretation::component_is_part_of_vector},
+                  {5 + dim,
+                                   5 + 2 * dim - 1,
+                                   "displacement",
+                                   DataComponentInterpretation::component_is_part_of_vector}};
+        const std::string file =
+          "contact-" + pair.parameters->name + "-" + number + ".vtu";
+        {
+          std::ofstream out(directory + "/" + file + ".tmp");
+          DataOutBase::write_vtu(
+            patches, names, vectors, DataOutBase::VtkFlags(time), out);
+        }
+        std::rename((directory + "/" + file + ".tmp").c_str(),
+                    (directory + "/" + file).c_str());
+        pair.records.emplace_back(time, file);
+        {
+          std::ofstream out(stem + ".pvd.tmp");
+          DataOutBase::write_pvd_record(out, pair.records);
+        }
+        std::rename((stem + ".pvd.tmp").c_str(), (stem + ".pvd").c_str());
       }
   }
 

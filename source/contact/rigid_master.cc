@@ -60,25 +60,55 @@ namespace glide
     set_time(0.);
   }
 
+  namespace
+  {
+    /// Rotation by @p theta about z (in 3D about the z axis).
+    template <int dim>
+    Tensor<1, dim>
+    rotate_z(const Tensor<1, dim> &v, const double theta)
+    {
+      Tensor<1, dim> w = v;
+      w[0]             = std::cos(theta) * v[0] - std::sin(theta) * v[1];
+      w[1]             = std::sin(theta) * v[0] + std::cos(theta) * v[1];
+      return w;
+    }
+  } // namespace
+
   template <int dim>
-  void
-  RigidMaster<dim>::set_time(const double t)
+  std::pair<Tensor<1, dim>, double>
+  RigidMaster<dim>::motion(const double t) const
   {
     Tensor<1, dim> u;
     if (translation)
       for (unsigned int d = 0; d < dim; ++d)
         u[d] = translation->value(Point<1>(t), d);
-    const double theta = rotation->value(Point<1>(t));
+    return {u, rotation->value(Point<1>(t))};
+  }
+
+  template <int dim>
+  Point<dim>
+  RigidMaster<dim>::move(const Point<dim> &y,
+                         const double      from,
+                         const double      to) const
+  {
+    // x(X, t) = c + u(t) + R(theta(t)) (X - c): back to X, forward to t.
+    const auto [u0, theta0] = motion(from);
+    const auto [u1, theta1] = motion(to);
+    const Tensor<1, dim> X_minus_c =
+      rotate_z<dim>(y - rotation_center - u0, -theta0);
+    return rotation_center + u1 + rotate_z<dim>(X_minus_c, theta1);
+  }
+
+  template <int dim>
+  void
+  RigidMaster<dim>::set_time(const double t)
+  {
+    const auto [u, theta] = motion(t);
     // Rotation about z (in 3D the axis of a cylinder stays along z only
     // for theta = 0; rotations are meant for 2D and for planes).
-    auto rotate = [&](const Tensor<1, dim> &v) {
-      Tensor<1, dim> w = v;
-      w[0]             = std::cos(theta) * v[0] - std::sin(theta) * v[1];
-      w[1]             = std::sin(theta) * v[0] + std::cos(theta) * v[1];
-      return w;
-    };
-    point  = rotation_center + u + rotate(reference_point - rotation_center);
-    normal = rotate(reference_normal);
+    point = rotation_center + u +
+            rotate_z<dim>(reference_point - rotation_center, theta);
+    normal = rotate_z<dim>(reference_normal, theta);
   }
 
   template <int dim>

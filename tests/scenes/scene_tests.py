@@ -311,6 +311,46 @@ def case_hertz_axisymmetric_and_3d():
     check(all(r["kinsol_iterations"] <= 10 for r in rows), "3D: <= 10 iterations per step")
 
 
+def case_contact_slip():
+    """Issue 3 section 4 (CSLIP, R12.1 for finite sliding) and P5: a block
+    (nu = 0, top fixed) rests on a rigid plane at its bottom; the plane
+    rises by 0.01 in the first quarter of the load, then slides 0.3
+    sideways. Frictionless contact does not drag the block, so every closed
+    slave node slips exactly 0.3 relative to the plane (with nu = 0 the
+    compression moves no node sideways); the contact VTU files open in VTK
+    with CPRESS, COPEN, CSTATUS, CSLIP and the normal; the .pvd lists
+    every step."""
+    import vtk
+    from vtk.util.numpy_support import vtk_to_numpy
+    extra = ("set Contact pairs = base\nsubsection Contact pair base\n set Slave = block.bottom\n"
+             " set Master = rigid plane\n subsection Rigid master\n  set Point = 0, 0\n  set Normal = 0, 1\n"
+             "  set Translation = 0.3*max(t-0.25,0)/0.75; 0.01*min(t/0.25,1)\n end\nend\n")
+    tmp = tempfile.mkdtemp(prefix="glide-slip-")
+    path = os.path.join(tmp, "slip.prm")
+    open(path, "w").write(open(scene("block.prm")).read() + extra)
+    rows, _, out = run(path, "Load stepping/Number of steps=4", "Body block/Material/Poisson's ratio=0",
+                       "Boundary condition bottom/Surface=block.left", "Boundary condition bottom/Type=XSYMM",
+                       "Boundary condition load/Type=fixed")
+    close(rows[-1]["contact_base_max_slip"], 0.3, 1e-9, "largest slip = 0.3")
+    check(rows[0]["contact_base_max_slip"] < 1e-12, "no slip while pressing")
+    check(rows[-1]["contact_base_active"] == 5, f"all 5 bottom nodes closed ({int(rows[-1]['contact_base_active'])})")
+    last = sorted(f for f in os.listdir(out) if f.startswith("contact-base-") and f.endswith(".csv"))[-1]
+    with open(os.path.join(out, last)) as f:
+        nodes = list(csv.DictReader(f))
+    check(all(abs(float(n["CSLIP"]) - 0.3) < 1e-9 for n in nodes), "every node slipped 0.3")
+    files = re.findall(r'file="([^"]+)"', open(os.path.join(out, "contact-base.pvd")).read())
+    check(len(files) == 4, f"contact pvd lists the 4 steps ({len(files)})")
+    r = vtk.vtkXMLUnstructuredGridReader()
+    r.SetFileName(os.path.join(out, files[-1]))
+    r.Update()
+    grid = r.GetOutput()
+    check(grid.GetNumberOfPoints() == 5, f"{grid.GetNumberOfPoints()} contact points")
+    pd = grid.GetPointData()
+    for field in ("CPRESS", "COPEN", "CSTATUS", "CSLIP", "contact_normal", "displacement"):
+        check(pd.GetArray(field) is not None, f"contact field {field}")
+    check(abs(vtk_to_numpy(pd.GetArray("CSLIP")) - 0.3).max() < 1e-6, "CSLIP in the VTU")
+
+
 def case_amg_matches_direct():
     """P3.3: GMRES with ML AMG (rigid-body modes as near null space) and the
     direct solver give the same answer to solver tolerance on a 3D block,

@@ -90,12 +90,23 @@ namespace glide
     std::vector<std::pair<std::string, std::string>>
     statistics(const VectorType &U) const;
 
-    /// Write one CSV row per slave node (position, gap, force, pressure,
-    /// status) for step @p step into @p directory.
+    /// After a converged step from load factor @p t_old to @p t_new:
+    /// accumulate the slip CSLIP of every closed slave node, the tangential
+    /// part of its motion relative to the master's material point under it
+    /// (R12.1 for finite sliding).
+    void
+    update_slip(const VectorType &U, const double t_old, const double t_new);
+
+    /// Write, for step @p step at load factor @p time, one CSV row per
+    /// slave node (positions, COPEN, force, CPRESS, CSTATUS, CSLIP) and, if
+    /// @p vtu, a VTU point set with the same fields, the contact normal and
+    /// the displacement, listed in `contact-<pair>.pvd` for ParaView.
     void
     write_nodes(const VectorType  &U,
                 const std::string &directory,
-                const unsigned int step) const;
+                const unsigned int step,
+                const double       time,
+                const bool         vtu);
 
     /// Effects for the log.
     std::vector<std::string>
@@ -118,6 +129,12 @@ namespace glide
       const ContactPairParameters      *parameters;
       std::unique_ptr<RigidMaster<dim>> master;
       std::vector<SlaveNode>            nodes; ///< locally owned nodes
+      /// Per node: position at the end of the last converged step, and
+      /// accumulated slip.
+      std::vector<dealii::Point<dim>> previous_position;
+      std::vector<double>             slip;
+      /// Written steps, for the .pvd file.
+      std::vector<std::pair<double, std::string>> records;
     };
     struct NodeState
     {

@@ -40,6 +40,11 @@ namespace glide
     void
     set_time(const double t);
 
+    /// Where the master's material point that is at @p y at load factor
+    /// @p from is at load factor @p to (for the slip of a slave node).
+    dealii::Point<dim>
+    move(const dealii::Point<dim> &y, const double from, const double to) const;
+
     /// Gap, normal and curvature for the slave point @p x (current
     /// position). Throws std::runtime_error where the normal is undefined
     /// (a slave point on the axis of a circle or at a sphere's center).
@@ -47,6 +52,10 @@ namespace glide
     project(const dealii::Point<dim> &x) const;
 
   private:
+    /// Translation and rotation angle at load factor @p t.
+    std::pair<dealii::Tensor<1, dim>, double>
+    motion(const double t) const;
+
     const MasterType       type;
     const bool             inside;
     const double           radius;
