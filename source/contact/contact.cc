@@ -32,6 +32,7 @@ namespace glide
     for (const auto &b : scene.bodies)
       max_youngs_modulus =
         std::max(max_youngs_modulus, b.material.youngs_modulus);
+    clearance                = 1e-10 * elasticity.length_scale();
     const auto &dof_handler  = elasticity.get_dof_handler();
     const auto &fe           = dof_handler.get_fe();
     const auto &mapping      = elasticity.get_mapping();
@@ -198,7 +199,7 @@ namespace glide
         s.lambda = U[node.multiplier];
         // Active where lambda - c g >= 0: then C = c g (closed, g -> 0);
         // otherwise C = lambda (open, lambda -> 0).
-        s.closed = s.lambda - node.c * g >= 0.;
+        s.closed = s.lambda - node.c * (g - clearance) >= 0.;
       }
     else
       {
@@ -242,7 +243,7 @@ namespace glide
             if (hard)
               {
                 idx[dim] = node.multiplier;
-                rhs(dim) = s.closed ? node.c * g : s.lambda;
+                rhs(dim) = s.closed ? node.c * (g - clearance) : s.lambda;
                 for (unsigned int d = 0; d < dim; ++d)
                   {
                     K(d, dim) = -nrm[d];

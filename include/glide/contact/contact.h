@@ -153,5 +153,10 @@ namespace glide
     dealii::IndexSet                multipliers;
     dealii::types::global_dof_index total_multipliers  = 0;
     double                          max_youngs_modulus = 0.;
+    /// Hard contact holds closed nodes at this gap, 1e-10 times the scene
+    /// size, instead of exactly 0: a node that touches the master up to
+    /// round-off (a body resting on a point) then counts as closed instead
+    /// of leaving the body floating with a singular stiffness matrix.
+    double clearance = 0.;
   };
 } // namespace glide
