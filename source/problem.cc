@@ -178,6 +178,7 @@ namespace glide
         VectorType U_trial = U;
         elasticity.constraints_at(t).distribute(U_trial);
         contact.set_time(t);
+        contact.begin_solve();
         pcout << "Step " << step + 1 << ": load factor " << t << " (increment "
               << t - t_old << ")" << std::endl;
         Timer      step_timer(comm);

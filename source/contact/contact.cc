@@ -131,6 +131,8 @@ namespace glide
         for (const auto &node : pair.nodes)
           pair.previous_position.push_back(node.X);
         pair.slip.assign(pair.nodes.size(), 0.);
+        pair.last_closed.assign(pair.nodes.size(), -1);
+        pair.switches.assign(pair.nodes.size(), 0);
         pairs.push_back(std::move(pair));
       }
 
@@ -176,6 +178,17 @@ namespace glide
 
   template <int dim>
   void
+  Contact<dim>::begin_solve()
+  {
+    for (auto &pair : pairs)
+      {
+        pair.last_closed.assign(pair.nodes.size(), -1);
+        pair.switches.assign(pair.nodes.size(), 0);
+      }
+  }
+
+  template <int dim>
+  void
   Contact<dim>::set_time(const double t)
   {
     for (auto &pair : pairs)
@@ -216,6 +229,7 @@ namespace glide
                          MatrixType       *J) const
   {
     const auto &constraints = elasticity.update_constraints();
+    std::string cycling; // nodes that switch too often, for the message
     for (const auto &pair : pairs)
       {
         const bool hard = pair.parameters->enforcement == Enforcement::hard;
@@ -223,14 +237,30 @@ namespace glide
         Vector<double>                       rhs(n);
         FullMatrix<double>                   K(n, n);
         std::vector<types::global_dof_index> idx(n);
-        for (const auto &node : pair.nodes)
+        for (unsigned int i = 0; i < pair.nodes.size(); ++i)
           {
-            const NodeState s   = state(pair, node, U);
-            const auto     &nrm = s.projection.normal;
-            const auto     &H   = s.projection.curvature;
-            const double    g   = s.projection.gap;
-            rhs                 = 0;
-            K                   = 0;
+            const auto     &node = pair.nodes[i];
+            const NodeState s    = state(pair, node, U);
+            if (F)
+              {
+                // Active-set cycling: count the switches of each node
+                // between residual evaluations (one per Newton iteration).
+                if (pair.last_closed[i] >= 0 &&
+                    pair.last_closed[i] != (s.closed ? 1 : 0))
+                  ++pair.switches[i];
+                pair.last_closed[i] = s.closed ? 1 : 0;
+                if (pair.switches[i] > maximum_switches && cycling.size() < 400)
+                  {
+                    std::ostringstream x;
+                    x << "(" << node.X << ")";
+                    cycling += (cycling.empty() ? "" : ", ") + x.str();
+                  }
+              }
+            const auto  &nrm = s.projection.normal;
+            const auto  &H   = s.projection.curvature;
+            const double g   = s.projection.gap;
+            rhs              = 0;
+            K                = 0;
             for (unsigned int d = 0; d < dim; ++d)
               idx[d] = node.dofs[d];
             // Displacement rows: -lambda dg/du, with lambda the contact force.
@@ -267,6 +297,19 @@ namespace glide
       F->compress(VectorOperation::add);
     if (J)
       J->compress(VectorOperation::add);
+    if (Utilities::MPI::max(static_cast<unsigned int>(cycling.size()), comm) >
+        0)
+      {
+        const auto  all = Utilities::MPI::gather(comm, cycling, 0);
+        std::string nodes;
+        for (const auto &c : all)
+          if (!c.empty())
+            nodes += (nodes.empty() ? "" : ", ") + c;
+        throw std::runtime_error(
+          "active-set cycling: slave node(s) at " + nodes +
+          " switched between open and closed more than " +
+          std::to_string(maximum_switches) + " times in this load step");
+      }
   }
 
   template <int dim>

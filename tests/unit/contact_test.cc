@@ -272,3 +272,54 @@ TEST(Contact, UnknownSlaveSurfaceListsTheSurfaces)
       EXPECT_NE(m.find("body.top"), std::string::npos) << m;
     }
 }
+
+TEST(Contact, ActiveSetCyclingIsDetectedAndNamesTheNodes)
+{
+  // A node whose state flips at every residual evaluation (here: its
+  // contact force toggled between 0 and a large value while the master is
+  // away, so it is alternately closed and open) must make the evaluation
+  // fail after more than 4 switches, with a message that names the node;
+  // a new solve starts counting afresh.
+  std::string text = contact_scene(false, "rigid plane", "hard");
+  text.replace(text.find("0.5, 1.0\n"),
+               9,
+               "0.5, 3.0\n"); // the plane far above: all open
+  const Scene scene = Scene::read(glide_test::write_file("cycling.prm", text));
+  TimerOutput timer(MPI_COMM_WORLD,
+                    std::cout,
+                    TimerOutput::never,
+                    TimerOutput::wall_times);
+  Elasticity<2> e(scene, MPI_COMM_WORLD, timer);
+  e.setup();
+  Contact<2> contact(scene, e, MPI_COMM_WORLD);
+  contact.setup(e.get_dof_handler().n_dofs());
+  e.setup_system(contact.owned_multipliers(), [&](DynamicSparsityPattern &dsp) {
+    contact.add_sparsity(dsp);
+  });
+  VectorType U(e.locally_owned(), MPI_COMM_WORLD), F(U);
+  contact.begin_solve();
+  for (unsigned int k = 0; k < 5; ++k)
+    {
+      U = 0;
+      for (const auto i : contact.owned_multipliers())
+        U[i] = (k % 2 == 0) ? 1e6 : 0.;
+      U.compress(VectorOperation::insert);
+      EXPECT_NO_THROW(contact.assemble(U, &F, nullptr)) << "evaluation " << k;
+    }
+  U = 0; // open again: the fifth switch
+  try
+    {
+      contact.assemble(U, &F, nullptr);
+      FAIL() << "no cycling reported";
+    }
+  catch (const std::runtime_error &err)
+    {
+      EXPECT_NE(std::string(err.what()).find("active-set cycling"),
+                std::string::npos)
+        << err.what();
+      EXPECT_NE(std::string(err.what()).find("(0 1)"), std::string::npos)
+        << err.what();
+    }
+  contact.begin_solve();
+  EXPECT_NO_THROW(contact.assemble(U, &F, nullptr));
+}

@@ -69,12 +69,21 @@ namespace glide
     void
     add_sparsity(dealii::DynamicSparsityPattern &dsp) const;
 
+    /// Start a new nonlinear solve: forget the open/closed history used to
+    /// detect active-set cycling.
+    void
+    begin_solve();
+
     /// Move rigid masters to load factor @p t.
     void
     set_time(const double t);
 
     /// Add the contact terms to F (and to J if given), condensed with the
-    /// displacement constraints.
+    /// displacement constraints. Each residual evaluation (F given) also
+    /// checks for active-set cycling: a slave node that switches between
+    /// open and closed more than `maximum_switches` times in one solve
+    /// makes the evaluation fail with a message that names the nodes, so
+    /// that the load step is cut back.
     void
     assemble(const VectorType &U, VectorType *F, MatrixType *J) const;
 
@@ -133,6 +142,10 @@ namespace glide
       /// accumulated slip.
       std::vector<dealii::Point<dim>> previous_position;
       std::vector<double>             slip;
+      /// Open/closed state at the last residual evaluation and the number
+      /// of switches in the current solve, per node (cycling detection).
+      mutable std::vector<signed char>  last_closed;
+      mutable std::vector<unsigned int> switches;
       /// Written steps, for the .pvd file.
       std::vector<std::pair<double, std::string>> records;
     };
@@ -158,5 +171,8 @@ namespace glide
     /// round-off (a body resting on a point) then counts as closed instead
     /// of leaving the body floating with a singular stiffness matrix.
     double clearance = 0.;
+    /// Switches between open and closed per node and solve before the
+    /// solve is declared cycling.
+    static constexpr unsigned int maximum_switches = 4;
   };
 } // namespace glide
