@@ -108,8 +108,8 @@ namespace glide
             const std::string f = entry.path().filename().string();
             if ((f.rfind(scene.name + "-", 0) == 0 &&
                  (f.find(".vtu") != std::string::npos)) ||
-                f == scene.name + ".pvd" || f == "statistics.csv" ||
-                f == "timings.csv")
+                f == scene.name + ".pvd" || f.rfind("contact-", 0) == 0 ||
+                f == "statistics.csv" || f == "timings.csv")
               std::filesystem::remove(entry.path());
           }
       }

@@ -230,6 +230,7 @@ namespace glide
   {
     const auto &constraints = elasticity.update_constraints();
     std::string cycling; // nodes that switch too often, for the message
+    std::string failure; // a projection that failed on this process
     for (const auto &pair : pairs)
       {
         const bool hard = pair.parameters->enforcement == Enforcement::hard;
@@ -239,12 +240,23 @@ namespace glide
         std::vector<types::global_dof_index> idx(n);
         for (unsigned int i = 0; i < pair.nodes.size(); ++i)
           {
-            const auto     &node = pair.nodes[i];
-            const NodeState s    = state(pair, node, U);
-            if (F)
+            const auto &node = pair.nodes[i];
+            NodeState   s;
+            try
+              {
+                s = state(pair, node, U);
+              }
+            catch (const std::exception &e)
+              {
+                // Finish the loop so that every process reaches compress().
+                failure = e.what();
+                continue;
+              }
+            if (J)
               {
                 // Active-set cycling: count the switches of each node
-                // between residual evaluations (one per Newton iteration).
+                // between Jacobian set-ups (one per Newton iteration; line
+                // search trials and convergence checks do not count).
                 if (pair.last_closed[i] >= 0 &&
                     pair.last_closed[i] != (s.closed ? 1 : 0))
                   ++pair.switches[i];
@@ -380,8 +392,10 @@ namespace glide
             {
               // The master point under the slave node at the start of the
               // step, moved with the master to the end of the step.
+              pair.master->set_time(t_old);
               const Point<dim> y_old =
                 pair.master->project(pair.previous_position[i]).closest_point;
+              pair.master->set_time(t_new);
               const Point<dim> y_new = pair.master->move(y_old, t_old, t_new);
               const Tensor<1, dim> relative =
                 (s.x - pair.previous_position[i]) - (y_new - y_old);

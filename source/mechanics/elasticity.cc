@@ -15,6 +15,19 @@ namespace glide
 {
   using namespace dealii;
 
+  void
+  throw_on_any_process(const std::string &failure, MPI_Comm comm)
+  {
+    if (Utilities::MPI::max(failure.empty() ? 0 : 1, comm) == 0)
+      return;
+    std::string message;
+    for (const auto &m : Utilities::MPI::gather(comm, failure, 0))
+      if (message.empty() && !m.empty())
+        message = m;
+    message = Utilities::MPI::broadcast(comm, message, 0);
+    throw std::runtime_error(message);
+  }
+
   namespace
   {
     /// Embed a dim-dimensional displacement gradient into 3x3, adding the
@@ -230,7 +243,8 @@ namespace glide
                                     "traction") +
                       " needs a surface <body>.<surface>.");
             // Every process needs the constraints of its ghost DoFs too.
-            load.nodes = find_nodes(bc.surface, path + "/Surface", false);
+            load.nodes       = find_nodes(bc.surface, path + "/Surface", false);
+            load.on_node_set = true;
           }
         else
           for (const auto &name : Utilities::split_string_list(bc.surface, ','))
@@ -330,7 +344,9 @@ namespace glide
   Elasticity<dim>::ghosted_displacement(const VectorType &U) const
   {
     VectorType ghosted(owned, relevant, comm);
-    if (owned_total.n_elements() == owned.n_elements())
+    // Global sizes: the choice must be the same on every process, since
+    // the import below is collective.
+    if (owned_total.size() == owned.size())
       ghosted = U;
     else
       {
@@ -367,7 +383,7 @@ namespace glide
                 f = d.function.get();
               }
           }
-        if (!d.nodes.empty())
+        if (d.on_node_set)
           {
             Vector<double> value(dim);
             for (const auto &[node_dofs, x] : d.nodes)
@@ -483,6 +499,9 @@ namespace glide
     Tensor2              P;
     Vector<double>       load(dim);
 
+    // A failure on one process (an inverted element) must not leave the
+    // others waiting in compress(): finish the loop, then agree.
+    std::string failure;
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
         if (!cell->is_locally_owned())
@@ -502,9 +521,17 @@ namespace glide
             const double      r = x[0];
             const double      w =
               fe_values.JxW(q) * (axisymmetric ? 2 * numbers::PI * r : 1.);
-            law.evaluate(embed<dim>(grads[q],
-                                    axisymmetric ? values[q][0] / r : 0.),
-                         P);
+            try
+              {
+                law.evaluate(embed<dim>(grads[q],
+                                        axisymmetric ? values[q][0] / r : 0.),
+                             P);
+              }
+            catch (const std::exception &e)
+              {
+                failure = e.what();
+                P       = 0;
+              }
 
             Tensor<1, dim> b;
             if (exact)
@@ -621,6 +648,7 @@ namespace glide
       F->compress(VectorOperation::add);
     if (J)
       J->compress(VectorOperation::add);
+    throw_on_any_process(failure, comm);
   }
 
   template <int dim>
@@ -638,7 +666,7 @@ namespace glide
         // Only the components this condition constrains.
         const ComponentMask mask = component_mask(*d.parameters);
         Tensor<1, dim>      sum;
-        if (!d.nodes.empty())
+        if (d.on_node_set)
           {
             // A node set: its owned vertex DoFs.
             for (const auto &[node_dofs, x] : d.nodes)

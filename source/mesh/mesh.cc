@@ -195,9 +195,13 @@ namespace glide
               {
                 int         d, tag;
                 std::string name;
-                in >> d >> tag >> name;
-                if (name.size() >= 2 && name.front() == '"')
-                  name = name.substr(1, name.size() - 2);
+                in >> d >> tag;
+                std::getline(in, name); // the rest of the line: "a name"
+                const auto first = name.find('"'), last = name.rfind('"');
+                if (first != std::string::npos && last > first)
+                  name = name.substr(first + 1, last - first - 1);
+                else
+                  name = Utilities::trim(name);
                 if (d == face_dim)
                   names[tag] = name;
               }
@@ -335,7 +339,7 @@ namespace glide
       {
         GridIn<dim>   grid_in(tria);
         std::ifstream in(m.file);
-        const bool    msh = m.file.substr(m.file.size() - 4) == ".msh";
+        const bool    msh = m.is_gmsh();
         try
           {
             if (msh)

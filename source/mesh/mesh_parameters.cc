@@ -3,6 +3,7 @@
 
 #include <deal.II/base/utilities.h>
 
+#include <filesystem>
 #include <fstream>
 #include <map>
 
@@ -45,6 +46,21 @@ namespace glide
                 "D scene, but has " + std::to_string(v.size()) + ".");
     }
   } // namespace
+
+  std::string
+  MeshParameters::extension() const
+  {
+    std::string e = std::filesystem::path(file).extension().string();
+    for (auto &c : e)
+      c = std::tolower(static_cast<unsigned char>(c));
+    return e;
+  }
+
+  bool
+  MeshParameters::is_gmsh() const
+  {
+    return extension() == ".msh";
+  }
 
   std::string
   MeshParameters::builder_names()
@@ -172,10 +188,8 @@ namespace glide
                 "Parameter '" + path + "/Mesh file': cannot open '" + file +
                   "' (relative paths are taken relative to the scene "
                   "file).");
-        const bool msh =
-          file.size() > 4 && file.substr(file.size() - 4) == ".msh";
-        const bool inp =
-          file.size() > 4 && file.substr(file.size() - 4) == ".inp";
+        const bool msh = is_gmsh();
+        const bool inp = extension() == ".inp";
         require(msh || inp,
                 "Parameter '" + path + "/Mesh file' = '" + file +
                   "': only Gmsh '.msh' and Abaqus '.inp' files are read.");

@@ -286,7 +286,7 @@ namespace glide
             require(dot != std::string::npos,
                     "Parameter '" + path + "' = '" + surface +
                       "' is not of the form <body>.<surface> (or the name of "
-                      "a node set, for concentrated forces).");
+                      "a node set, for forces and prescribed displacements).");
             require(body_names.count(surface.substr(0, dot)) > 0,
                     "Parameter '" + path + "' = '" + surface +
                       "' names the body '" + surface.substr(0, dot) +

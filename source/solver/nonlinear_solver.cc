@@ -112,7 +112,9 @@ namespace glide
     VectorType guess = U;
     try
       {
-        kinsol.solve(U);
+        // KINSOL's own count of nonlinear iterations (setups may be fewer
+        // when the Jacobian is reused).
+        result.iterations = kinsol.solve(U);
       }
     catch (const ExceptionBase &e)
       {

@@ -27,6 +27,12 @@
 namespace glide
 {
   using VectorType = dealii::TrilinosWrappers::MPI::Vector;
+
+  /// If @p failure is non-empty on any process, throw std::runtime_error
+  /// with the first such message on every process (so that no process is
+  /// left waiting in a collective call).
+  void
+  throw_on_any_process(const std::string &failure, MPI_Comm comm);
   using MatrixType = dealii::TrilinosWrappers::SparseMatrix;
 
   /**
@@ -190,6 +196,9 @@ namespace glide
     {
       const BoundaryConditionParameters   *parameters;
       std::set<dealii::types::boundary_id> ids;
+      /// True if the condition acts on a node set (then `nodes` holds this
+      /// process's vertices of it, possibly none).
+      bool on_node_set = false;
       /// For conditions on a node set: vertex DoFs and positions.
       std::vector<std::pair<std::array<dealii::types::global_dof_index, dim>,
                             dealii::Point<dim>>>

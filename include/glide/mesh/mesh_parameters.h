@@ -42,6 +42,13 @@ namespace glide
     double              refinement_radius         = 0.;
     double              minimum_refinement_radius = 0.;
 
+    /// Lower-case extension of the mesh file (".msh", ".inp", ...).
+    std::string
+    extension() const;
+    /// True for a Gmsh file.
+    bool
+    is_gmsh() const;
+
     /// Names of the built-in builders, '|'-separated, for Patterns::Selection.
     static std::string
     builder_names();
