@@ -168,7 +168,9 @@ namespace glide
 
     const double nominal = 1. / scene.load_stepping.number_of_steps;
     double       dt      = nominal;
-    unsigned int step = 0, cut_backs = 0;
+    // cut_backs counts over the run (statistics), step_cut_backs within the
+    // current step (the limit of 'Maximum cut-backs').
+    unsigned int step = 0, cut_backs = 0, step_cut_backs = 0;
     while (t < 1. - 1e-12)
       {
         const double t_old = t;
@@ -188,19 +190,22 @@ namespace glide
           {
             pcout << "  step failed: " << result.message << std::endl;
             t = t_old;
-            if (cut_backs >= scene.load_stepping.maximum_cut_backs)
-              throw std::runtime_error(
-                "load step " + std::to_string(step + 1) + " failed after " +
-                std::to_string(cut_backs) + " cut-backs: " + result.message);
+            if (step_cut_backs >= scene.load_stepping.maximum_cut_backs)
+              throw std::runtime_error("load step " + std::to_string(step + 1) +
+                                       " failed after " +
+                                       std::to_string(step_cut_backs) +
+                                       " cut-backs: " + result.message);
             ++cut_backs;
+            ++step_cut_backs;
             dt *= scene.load_stepping.cut_back_factor;
             pcout << "  cutting back: new increment " << dt << " (cut-back "
-                  << cut_backs << " of at most "
+                  << step_cut_backs << " of at most "
                   << scene.load_stepping.maximum_cut_backs << ")" << std::endl;
             continue;
           }
         U = U_trial;
         ++step;
+        step_cut_backs = 0;
         pcout << "  converged in " << result.iterations
               << " iteration(s), scaled residual "
               << scientific(result.residual_norm) << std::endl;

@@ -109,8 +109,9 @@ namespace glide
     prm.declare_entry("Maximum cut-backs",
                       "6",
                       Patterns::Integer(0, 30),
-                      "How often a failed step may be cut back and retried "
-                      "before the run stops.");
+                      "How often one load step may be cut back and retried "
+                      "before the run stops (statistics.csv counts the "
+                      "cut-backs of the whole run).");
     prm.declare_entry("Cut-back factor",
                       "0.5",
                       Patterns::Double(0.01, 0.9),

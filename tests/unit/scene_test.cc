@@ -52,10 +52,10 @@ end
   std::string
   error_of(const std::string &text, const std::string &file = "scene_test.prm")
   {
-    glide_test::write_file(file, text);
+    const std::string path = glide_test::write_file(file, text);
     try
       {
-        Scene::read(file);
+        Scene::read(path);
       }
     catch (const InputError &e)
       {
