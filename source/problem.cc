@@ -136,6 +136,17 @@ namespace glide
         }
     };
     callbacks.setup_jacobian = [&](const VectorType &u) {
+      if (contact.active() && contact.needs_new_pattern(u))
+        {
+          // A slave node slid onto master facets outside the pattern.
+          pcout << "    contact: sparsity pattern rebuilt (sliding)"
+                << std::endl;
+          elasticity.setup_system(contact.owned_multipliers(),
+                                  [&](DynamicSparsityPattern &dsp) {
+                                    contact.add_sparsity(dsp);
+                                  });
+          jacobian.reinit(elasticity.matrix_pattern());
+        }
       elasticity.jacobian(u, jacobian);
       if (contact.active())
         {

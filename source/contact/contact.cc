@@ -53,7 +53,28 @@ namespace glide
         const std::string path = "Contact pair " + p.name;
         Pair              pair;
         pair.parameters = &p;
-        pair.master     = std::make_unique<RigidMaster<dim>>(p, path);
+        if (p.master_type == MasterType::surface)
+          {
+            require(Utilities::MPI::n_mpi_processes(comm) == 1,
+                    "Contact pair '" + p.name +
+                      "': deformable master surfaces ('" + p.master +
+                      "') run on one process for now; run glide without "
+                      "mpirun (or with -np 1), or use a rigid master.");
+            std::set<types::boundary_id> master_ids;
+            for (const auto &name : Utilities::split_string_list(p.master, ','))
+              for (const auto id :
+                   elasticity.get_mesh().surface(name, path + "/Master"))
+                master_ids.insert(id);
+            pair.surface = std::make_unique<MasterSurface<dim>>(elasticity,
+                                                                master_ids,
+                                                                p.smoothing,
+                                                                path);
+            require(!pair.surface->get_facets().empty(),
+                    "Contact pair '" + p.name + "': the master surface '" +
+                      p.master + "' has no faces.");
+          }
+        else
+          pair.master = std::make_unique<RigidMaster<dim>>(p, path);
 
         std::set<types::boundary_id> ids;
         for (const auto &name : Utilities::split_string_list(p.slave, ','))
@@ -128,6 +149,26 @@ namespace glide
         require(n_global > 0,
                 "Contact pair '" + p.name + "': the slave surface '" + p.slave +
                   "' has no nodes.");
+        if (pair.surface)
+          {
+            std::set<types::global_dof_index> master_dofs;
+            for (const auto &m : pair.surface->get_nodes())
+              master_dofs.insert(m.dofs[0]);
+            for (const auto &node : pair.nodes)
+              {
+                std::ostringstream x;
+                x << node.X;
+                require(master_dofs.count(node.dofs[0]) == 0,
+                        "Contact pair '" + p.name + "': the slave node at (" +
+                          x.str() + ") is also a node of the master surface '" +
+                          p.master +
+                          "'; slave and master must not share nodes (use "
+                          "surfaces of different bodies, or split the "
+                          "surface).");
+              }
+            pair.previous_projection.resize(pair.nodes.size());
+            pair.coupled.resize(pair.nodes.size());
+          }
         for (const auto &node : pair.nodes)
           pair.previous_position.push_back(node.X);
         pair.slip.assign(pair.nodes.size(), 0.);
@@ -159,21 +200,94 @@ namespace glide
 
   template <int dim>
   void
-  Contact<dim>::add_sparsity(DynamicSparsityPattern &dsp) const
+  Contact<dim>::add_sparsity(DynamicSparsityPattern &dsp)
   {
-    for (const auto &pair : pairs)
-      for (const auto &node : pair.nodes)
+    for (auto &pair : pairs)
+      for (unsigned int i = 0; i < pair.nodes.size(); ++i)
         {
+          const auto                          &node = pair.nodes[i];
           std::vector<types::global_dof_index> idx(node.dofs.begin(),
                                                    node.dofs.end());
           if (node.multiplier != numbers::invalid_dof_index)
             idx.push_back(node.multiplier);
+          if (pair.surface)
+            {
+              // The master nodes within one facet size of the slave node's
+              // current position (the surface is at the last iterate, see
+              // needs_new_pattern()) ...
+              Point<dim> x = node.X;
+              for (unsigned int d = 0; d < dim; ++d)
+                x[d] = pair.surface->get_nodes().empty() ?
+                         x[d] :
+                         x[d] + current_displacement(node.dofs[d]);
+              pair.coupled[i] =
+                pair.surface->nodes_near(x, pair.surface->facet_size());
+              // ... and those of its projection now.
+              const auto projection = pair.surface->project(x);
+              if (projection.found)
+                {
+                  const auto used = pair.surface->nodes_of(projection);
+                  std::vector<unsigned int> all;
+                  std::set_union(used.begin(),
+                                 used.end(),
+                                 pair.coupled[i].begin(),
+                                 pair.coupled[i].end(),
+                                 std::back_inserter(all));
+                  pair.coupled[i] = all;
+                }
+              for (const auto k : pair.coupled[i])
+                for (unsigned int d = 0; d < dim; ++d)
+                  idx.push_back(pair.surface->get_nodes()[k].dofs[d]);
+            }
           // Through the constraints: a slave node at a hanging node couples
           // with the DoFs it is constrained to.
           elasticity.update_constraints().add_entries_local_to_global(idx,
                                                                       dsp,
                                                                       false);
         }
+  }
+
+  template <int dim>
+  bool
+  Contact<dim>::needs_new_pattern(const VectorType &U)
+  {
+    bool outside = false;
+    move_surfaces(U);
+    for (const auto &pair : pairs)
+      if (pair.surface)
+        for (unsigned int i = 0; i < pair.nodes.size() && !outside; ++i)
+          {
+            const NodeState s = state(pair, pair.nodes[i], U);
+            if (!s.found)
+              continue;
+            const auto used = pair.surface->nodes_of(s.projection);
+            outside         = !std::includes(pair.coupled[i].begin(),
+                                     pair.coupled[i].end(),
+                                     used.begin(),
+                                     used.end());
+          }
+    if (outside)
+      {
+        // Positions for add_sparsity().
+        last_displacement = U;
+      }
+    return Utilities::MPI::max(outside ? 1 : 0, comm) > 0;
+  }
+
+  template <int dim>
+  double
+  Contact<dim>::current_displacement(const types::global_dof_index i) const
+  {
+    return last_displacement.size() > 0 ? last_displacement[i] : 0.;
+  }
+
+  template <int dim>
+  void
+  Contact<dim>::move_surfaces(const VectorType &U) const
+  {
+    for (const auto &pair : pairs)
+      if (pair.surface)
+        pair.surface->set_displacement(U);
   }
 
   template <int dim>
@@ -192,7 +306,8 @@ namespace glide
   Contact<dim>::set_time(const double t)
   {
     for (auto &pair : pairs)
-      pair.master->set_time(t);
+      if (pair.master)
+        pair.master->set_time(t);
   }
 
   template <int dim>
@@ -205,21 +320,63 @@ namespace glide
     s.x = node.X;
     for (unsigned int d = 0; d < dim; ++d)
       s.x[d] += U[node.dofs[d]];
-    s.projection   = pair.master->project(s.x);
-    const double g = s.projection.gap;
+    if (pair.surface)
+      {
+        s.projection = pair.surface->project(s.x);
+        s.found      = s.projection.found;
+        s.gap =
+          s.found ? s.projection.gap : std::numeric_limits<double>::infinity();
+        s.normal = s.projection.normal;
+      }
+    else
+      {
+        s.rigid  = pair.master->project(s.x);
+        s.gap    = s.rigid.gap;
+        s.normal = s.rigid.normal;
+      }
+    const double g = s.gap;
     if (node.multiplier != numbers::invalid_dof_index)
       {
         s.lambda = U[node.multiplier];
         // Active where lambda - c g >= 0: then C = c g (closed, g -> 0);
         // otherwise C = lambda (open, lambda -> 0).
-        s.closed = s.lambda - node.c * (g - clearance) >= 0.;
+        s.closed = s.found && s.lambda - node.c * (g - clearance) >= 0.;
       }
     else
       {
-        s.lambda = node.k * std::max(0., -g);
-        s.closed = g < 0.;
+        s.lambda = s.found ? node.k * std::max(0., -g) : 0.;
+        s.closed = s.found && g < 0.;
       }
     return s;
+  }
+
+  template <int dim>
+  void
+  Contact<dim>::linearize(const Pair                                 &pair,
+                          const SlaveNode                            &node,
+                          const NodeState                            &s,
+                          typename MasterSurface<dim>::Linearization &l) const
+  {
+    if (pair.surface)
+      {
+        pair.surface->linearize(s.projection, s.x, node.dofs, l);
+        return;
+      }
+    // Rigid master: g depends on the slave node only; dg/du = n and the
+    // force direction is n, with derivative d2g/du2 (curvature).
+    l.dofs.assign(node.dofs.begin(), node.dofs.end());
+    l.gap    = s.gap;
+    l.normal = s.normal;
+    l.dgap.reinit(dim);
+    l.force.reinit(dim);
+    l.dforce.reinit(dim, dim);
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        l.dgap(d)  = s.normal[d];
+        l.force(d) = s.normal[d];
+        for (unsigned int e = 0; e < dim; ++e)
+          l.dforce(d, e) = s.rigid.curvature[d][e];
+      }
   }
 
   template <int dim>
@@ -231,13 +388,15 @@ namespace glide
     const auto &constraints = elasticity.update_constraints();
     std::string cycling; // nodes that switch too often, for the message
     std::string failure; // a projection that failed on this process
+    move_surfaces(U);
+    typename MasterSurface<dim>::Linearization l;
+    Vector<double>                             rhs;
+    FullMatrix<double>                         K;
+    std::vector<types::global_dof_index>       idx;
     for (const auto &pair : pairs)
       {
         const bool hard = pair.parameters->enforcement == Enforcement::hard;
-        const unsigned int                   n = dim + (hard ? 1 : 0);
-        Vector<double>                       rhs(n);
-        FullMatrix<double>                   K(n, n);
-        std::vector<types::global_dof_index> idx(n);
+        const bool symmetrized = pair.parameters->symmetrized;
         for (unsigned int i = 0; i < pair.nodes.size(); ++i)
           {
             const auto &node = pair.nodes[i];
@@ -245,6 +404,8 @@ namespace glide
             try
               {
                 s = state(pair, node, U);
+                if (s.found)
+                  linearize(pair, node, s, l);
               }
             catch (const std::exception &e)
               {
@@ -268,35 +429,62 @@ namespace glide
                     cycling += (cycling.empty() ? "" : ", ") + x.str();
                   }
               }
-            const auto  &nrm = s.projection.normal;
-            const auto  &H   = s.projection.curvature;
-            const double g   = s.projection.gap;
-            rhs              = 0;
-            K                = 0;
-            for (unsigned int d = 0; d < dim; ++d)
-              idx[d] = node.dofs[d];
-            // Displacement rows: -lambda dg/du, with lambda the contact force.
-            for (unsigned int d = 0; d < dim; ++d)
+            if (!s.found)
               {
-                rhs(d) = -s.lambda * nrm[d];
-                for (unsigned int e = 0; e < dim; ++e)
-                  K(d, e) = -s.lambda * H[d][e];
+                // Beyond the end of the master: open, lambda -> 0.
+                if (!hard)
+                  continue;
+                idx.assign(1, node.multiplier);
+                rhs.reinit(1);
+                K.reinit(1, 1);
+                rhs(0)  = s.lambda;
+                K(0, 0) = 1.;
               }
-            if (hard)
+            else
               {
-                idx[dim] = node.multiplier;
-                rhs(dim) = s.closed ? node.c * (g - clearance) : s.lambda;
-                for (unsigned int d = 0; d < dim; ++d)
+                // Displacement rows: -lambda G, G the force direction (dg/du
+                // where the normal is the gap's gradient); Jacobian
+                // -lambda dG/du. Multiplier row: C(lambda, g).
+                const unsigned int m = l.dofs.size();
+                const unsigned int n = m + (hard ? 1 : 0);
+                idx                  = l.dofs;
+                rhs.reinit(n);
+                K.reinit(n, n);
+                for (unsigned int a = 0; a < m; ++a)
                   {
-                    K(d, dim) = -nrm[d];
-                    K(dim, d) = s.closed ? node.c * nrm[d] : 0.;
+                    rhs(a) = -s.lambda * l.force(a);
+                    for (unsigned int b = 0; b < m; ++b)
+                      K(a, b) = -s.lambda * l.dforce(a, b);
                   }
-                K(dim, dim) = s.closed ? 0. : 1.;
+                // The couplings between displacements and the constraint:
+                // the force direction (column) and dg/du (row); their mean
+                // when symmetrized (R5.2).
+                Vector<double> column(l.force), row(l.dgap);
+                if (symmetrized)
+                  {
+                    for (unsigned int a = 0; a < m; ++a)
+                      for (unsigned int b = a + 1; b < m; ++b)
+                        K(a, b) = K(b, a) = 0.5 * (K(a, b) + K(b, a));
+                    column += l.dgap;
+                    column *= 0.5;
+                    row = column;
+                  }
+                if (hard)
+                  {
+                    idx.push_back(node.multiplier);
+                    rhs(m) = s.closed ? node.c * (l.gap - clearance) : s.lambda;
+                    for (unsigned int a = 0; a < m; ++a)
+                      {
+                        K(a, m) = -column(a);
+                        K(m, a) = s.closed ? node.c * row(a) : 0.;
+                      }
+                    K(m, m) = s.closed ? 0. : 1.;
+                  }
+                else if (s.closed)
+                  for (unsigned int a = 0; a < m; ++a)
+                    for (unsigned int b = 0; b < m; ++b)
+                      K(a, b) += node.k * column(a) * row(b);
               }
-            else if (s.closed)
-              for (unsigned int d = 0; d < dim; ++d)
-                for (unsigned int e = 0; e < dim; ++e)
-                  K(d, e) += node.k * nrm[d] * nrm[e];
             if (F && J)
               constraints.distribute_local_to_global(K, rhs, idx, *J, *F);
             else if (F)
@@ -309,6 +497,7 @@ namespace glide
       F->compress(VectorOperation::add);
     if (J)
       J->compress(VectorOperation::add);
+    throw_on_any_process(failure, comm);
     if (Utilities::MPI::max(static_cast<unsigned int>(cycling.size()), comm) >
         0)
       {
@@ -350,13 +539,16 @@ namespace glide
         unsigned int   active       = 0;
         double         normal_force = 0, penetration = 0;
         Tensor<1, dim> force;
+        if (pair.surface)
+          pair.surface->set_displacement(U);
         for (const auto &node : pair.nodes)
           {
             const NodeState s = state(pair, node, U);
             active += s.closed ? 1 : 0;
             normal_force += s.lambda;
-            force += s.lambda * s.projection.normal;
-            penetration = std::max(penetration, -s.projection.gap);
+            force += s.lambda * s.normal;
+            if (s.found)
+              penetration = std::max(penetration, -s.gap);
           }
         const std::string p = "contact_" + pair.parameters->name + "_";
         row.emplace_back(p + "active",
@@ -384,11 +576,29 @@ namespace glide
                             const double      t_old,
                             const double      t_new)
   {
+    move_surfaces(U);
     for (auto &pair : pairs)
       for (unsigned int i = 0; i < pair.nodes.size(); ++i)
         {
           const NodeState s = state(pair, pair.nodes[i], U);
-          if (s.closed)
+          if (s.closed && pair.surface)
+            {
+              // Relative to the master's material point that was under the
+              // slave node at the end of the last step (same piece and
+              // parameters, now in the current configuration).
+              const auto &old = pair.previous_projection[i];
+              if (old.found)
+                {
+                  const Point<dim> y =
+                    pair.surface->evaluate(old.piece, old.xi).first;
+                  const Point<dim>     y_old = old.point;
+                  const Tensor<1, dim> relative =
+                    (s.x - pair.previous_position[i]) - (y - y_old);
+                  const Tensor<1, dim> &n = s.normal;
+                  pair.slip[i] += (relative - (relative * n) * n).norm();
+                }
+            }
+          else if (s.closed)
             {
               // The master point under the slave node at the start of the
               // step, moved with the master to the end of the step.
@@ -399,10 +609,12 @@ namespace glide
               const Point<dim> y_new = pair.master->move(y_old, t_old, t_new);
               const Tensor<1, dim> relative =
                 (s.x - pair.previous_position[i]) - (y_new - y_old);
-              const Tensor<1, dim> &n = s.projection.normal;
+              const Tensor<1, dim> &n = s.normal;
               pair.slip[i] += (relative - (relative * n) * n).norm();
             }
           pair.previous_position[i] = s.x;
+          if (pair.surface)
+            pair.previous_projection[i] = s.projection;
         }
   }
 
@@ -417,9 +629,11 @@ namespace glide
     // Per node: X (dim), x (dim), COPEN, force, CPRESS, CSTATUS, CSLIP,
     // normal (dim).
     const unsigned int n_values = 3 * dim + 5;
+    move_surfaces(U);
     for (auto &pair : pairs)
       {
-        pair.master->set_time(time);
+        if (pair.master)
+          pair.master->set_time(time);
         std::vector<double> local;
         for (unsigned int i = 0; i < pair.nodes.size(); ++i)
           {
@@ -429,13 +643,13 @@ namespace glide
               local.push_back(node.X[d]);
             for (unsigned int d = 0; d < dim; ++d)
               local.push_back(s.x[d]);
-            local.push_back(s.projection.gap);
+            local.push_back(s.gap);
             local.push_back(s.lambda);
             local.push_back(s.lambda / node.area);
             local.push_back(s.closed ? 1. : 0.);
             local.push_back(pair.slip[i]);
             for (unsigned int d = 0; d < dim; ++d)
-              local.push_back(s.projection.normal[d]);
+              local.push_back(s.normal[d]);
           }
         const auto all = Utilities::MPI::gather(comm, local, 0);
         if (Utilities::MPI::this_mpi_process(comm) != 0)

@@ -171,11 +171,6 @@ namespace glide
           master != slave,
           "Contact pair '" + name + "': the surface '" + master +
             "' is both slave and master; a surface cannot contact itself.");
-        throw InputError(
-          "Contact pair '" + name + "': deformable master surfaces ('" +
-          master +
-          "') are not available yet; use a rigid master ('rigid plane', "
-          "'rigid circle' or 'rigid sphere').");
       }
 
     prm.enter_subsection("Rigid master");

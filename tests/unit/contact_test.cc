@@ -164,29 +164,8 @@ namespace
     e.update_constraints().distribute(v);
     contact.set_time(0.);
 
-    auto residual = [&](const VectorType &u, VectorType &F) {
-      F = 0;
-      contact.assemble(u, &F, nullptr);
-    };
-    MatrixType J;
-    J.reinit(e.matrix_pattern());
-    contact.assemble(U, nullptr, &J);
-    VectorType Jv(U), Fp(U), Fm(U), Up(U), Um(U);
-    J.vmult(Jv, v);
-    const double h = 1e-7;
-    Up.add(h, v);
-    Um.add(-h, v);
-    residual(Up, Fp);
-    residual(Um, Fm);
-    Fp -= Fm;
-    Fp /= 2 * h;
-    double err = 0, ref = 0;
-    for (const auto i : e.locally_owned())
-      if (!e.update_constraints().is_constrained(i))
-        {
-          err = std::max(err, std::abs(Jv[i] - Fp[i]));
-          ref = std::max(ref, std::abs(Fp[i]));
-        }
+    const auto [err, ref] =
+      glide_test::contact_jacobian_error(e, contact, U, v);
     EXPECT_GT(ref, 0.) << master << " " << enforcement;
     EXPECT_LT(err, 1e-6 * ref)
       << master << " " << enforcement << " " << dim << "D";

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <glide/contact/master_surface.h>
 #include <glide/contact/rigid_master.h>
 #include <glide/mechanics/elasticity.h>
 
@@ -65,9 +66,17 @@ namespace glide
       return total_multipliers;
     }
 
-    /// Couplings of contact terms, for the sparsity pattern.
+    /// Couplings of contact terms, for the sparsity pattern: each slave
+    /// node with the master nodes it can reach by sliding about one master
+    /// facet from where it is now.
     void
-    add_sparsity(dealii::DynamicSparsityPattern &dsp) const;
+    add_sparsity(dealii::DynamicSparsityPattern &dsp);
+
+    /// True if a slave node at iterate @p U projects onto master nodes
+    /// outside the current sparsity pattern (it slid further than
+    /// add_sparsity() allowed for): then the pattern must be rebuilt.
+    bool
+    needs_new_pattern(const VectorType &U);
 
     /// Start a new nonlinear solve: forget the open/closed history used to
     /// detect active-set cycling.
@@ -135,9 +144,14 @@ namespace glide
     };
     struct Pair
     {
-      const ContactPairParameters      *parameters;
-      std::unique_ptr<RigidMaster<dim>> master;
-      std::vector<SlaveNode>            nodes; ///< locally owned nodes
+      const ContactPairParameters        *parameters;
+      std::unique_ptr<RigidMaster<dim>>   master;  ///< analytical rigid
+      std::unique_ptr<MasterSurface<dim>> surface; ///< deformable body
+      /// Per node: master nodes coupled in the sparsity pattern (sorted),
+      /// and the projection at the end of the last converged step.
+      std::vector<std::vector<unsigned int>>               coupled;
+      std::vector<typename MasterSurface<dim>::Projection> previous_projection;
+      std::vector<SlaveNode> nodes; ///< locally owned nodes
       /// Per node: position at the end of the last converged step, and
       /// accumulated slip.
       std::vector<dealii::Point<dim>> previous_position;
@@ -151,18 +165,43 @@ namespace glide
     };
     struct NodeState
     {
-      typename RigidMaster<dim>::Projection projection;
-      dealii::Point<dim>                    x;
-      double                                lambda = 0.; ///< normal force
-      bool                                  closed = false;
+      dealii::Point<dim>     x;
+      double                 gap = 0.;
+      dealii::Tensor<1, dim> normal;
+      /// False where a slave node projects beyond the end of a deformable
+      /// master (then it is open, with gap +infinity).
+      bool                                    found = true;
+      typename RigidMaster<dim>::Projection   rigid;
+      typename MasterSurface<dim>::Projection projection;
+      double                                  lambda = 0.; ///< normal force
+      bool                                    closed = false;
     };
+    /// State of a slave node at iterate U (deformable masters must have
+    /// been moved to U with set_displacement()).
     NodeState
     state(const Pair &pair, const SlaveNode &node, const VectorType &U) const;
+
+    /// Gap and force direction with their derivatives at state @p s.
+    void
+    linearize(const Pair                                 &pair,
+              const SlaveNode                            &node,
+              const NodeState                            &s,
+              typename MasterSurface<dim>::Linearization &l) const;
+
+    /// Displacement component @p i at the iterate of the last
+    /// needs_new_pattern() that asked for a new pattern (0 before).
+    double
+    current_displacement(const dealii::types::global_dof_index i) const;
+
+    /// Move the deformable masters to iterate @p U.
+    void
+    move_surfaces(const VectorType &U) const;
 
     const Scene                    &scene;
     const Elasticity<dim>          &elasticity;
     MPI_Comm                        comm;
     std::vector<Pair>               pairs;
+    VectorType                      last_displacement;
     dealii::IndexSet                multipliers;
     dealii::types::global_dof_index total_multipliers  = 0;
     double                          max_youngs_modulus = 0.;

@@ -1,0 +1,253 @@
+#pragma once
+
+#include <glide/mechanics/elasticity.h>
+
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+#include <deal.II/numerics/rtree.h>
+
+#include <array>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace glide
+{
+  /**
+   * The master surface of a contact pair on a deformable body (issue 3,
+   * R1-R3): its facets, extracted from the boundary faces of degree 1 or 2
+   * with outward orientation, the smoothing of R1, the search (deal.II's
+   * R-tree over the pieces' bounding boxes) and the projection of a slave
+   * point, and the linearization of gap and contact force with respect to
+   * the slave and master displacements.
+   *
+   * The surface is a list of *pieces*, each a parametric patch
+   *   x(xi) = sum_j w_j(xi) v_j,
+   * with v_j a master node position or, at a symmetry plane, its mirror
+   * image. In 2D (plane strain, axisymmetric) the pieces are the facets
+   * shortened by f on each smoothed side and, between them, the transition
+   * curves of R1.1: a cubic Hermite curve from x1(1 - f) to x2(f) with end
+   * tangents 2 f x1'(1 - f) and 2 f x2'(f), which is tangent to both facets
+   * and is exactly the parabola with control points x1(1-f), node, x2(f)
+   * when the facets are straight. Only nodes where the normal jumps are
+   * smoothed (R1.2); a chain end on a symmetry plane (XSYMM/YSYMM, or the
+   * axis of an axisymmetric scene) is smoothed against the mirror image of
+   * its end facet (R2.1, R2.2). Smoothing never crosses the end of the
+   * master surface (R3.1); there the end facet is extended by 5 % of its
+   * parameter range, and a slave point beyond that is not in contact.
+   *
+   * In 3D the pieces are the facets themselves; only the normal is
+   * smoothed (R1.4): inside the lines at distance f from the edges (in the
+   * facet's parameters) it is the facet's own normal, and towards the edges
+   * and corners it blends, with the C1 step 3s^2 - 2s^3, into the edge
+   * normal (mean of the two facets' normals at the edge midpoint) and the
+   * corner normal (mean of the normals of all facets at the node).
+   *
+   * Projection: the point x(xi) whose normal n(xi) passes through the
+   * slave point, (r - (r.n) n).a_alpha = 0 with r = x_s - x(xi) and a_alpha
+   * the tangents; Newton on xi per candidate piece, clamped to the piece.
+   * The gap is g = r.n. Where no piece contains the projection but the
+   * closest point is on an edge or node between pieces (a faceted convex
+   * corner, f = 0), the slave point is in contact with that point: n =
+   * r/|r|. Linearization: automatic differentiation (Sacado) of g and of
+   * the force vector G (slave: n; master node j: -w_j n) through two chord
+   * steps of the projection, which gives the exact first derivatives,
+   * including the variation of projection point and normal (R5.1).
+   */
+  template <int dim>
+  class MasterSurface
+  {
+  public:
+    using Xi = std::array<double, dim - 1>;
+
+    struct Node
+    {
+      dealii::Point<dim>                               X;
+      std::array<dealii::types::global_dof_index, dim> dofs;
+    };
+    struct Facet
+    {
+      /// Nodes in lexicographic order of the facet's parameters; with
+      /// outward normal a_1 x a_2 (3D) or (a_y, -a_x) (2D).
+      std::vector<unsigned int> nodes;
+      /// Neighbour facet across each side (2D: at xi = 0, xi = 1; 3D: the
+      /// edges xi = 0, xi = 1, eta = 0, eta = 1), -1 at the surface boundary.
+      std::array<int, 2 * (dim - 1)> neighbours;
+    };
+    enum class PieceKind
+    {
+      lagrange, ///< a facet, or its part between xi_begin and xi_end (2D)
+      hermite   ///< a transition curve (2D)
+    };
+    struct Piece
+    {
+      PieceKind    kind  = PieceKind::lagrange;
+      unsigned int facet = 0;
+      double       begin = 0.; ///< 2D lagrange: facet parameter range
+      double       end   = 1.;
+      Xi           lower = {}; ///< parameter range of the projection
+      Xi           upper = {};
+      /// Virtual nodes: (node, mirrored); hermite: coefficients of the four
+      /// Hermite basis functions h00, h10, h01, h11.
+      std::vector<std::pair<unsigned int, bool>> vnodes;
+      std::vector<std::array<double, 4>>         coefficients;
+      int          mirror_node = -1; ///< node on the symmetry plane
+      unsigned int mirror_axis = 0;
+    };
+    struct Projection
+    {
+      bool         found  = false;
+      bool         vertex = false; ///< closest point on an edge/node
+      unsigned int piece  = 0;
+      Xi           xi     = {};
+      std::array<bool, dim - 1> clamped = {};
+      double                    gap     = 0.;
+      dealii::Tensor<1, dim>    normal;
+      dealii::Point<dim>        point;
+    };
+    /// Gap and contact force direction with their derivatives with respect
+    /// to `dofs` (slave node first, then the master nodes).
+    struct Linearization
+    {
+      std::vector<dealii::types::global_dof_index> dofs;
+      double                                       gap = 0.;
+      dealii::Tensor<1, dim>                       normal;
+      dealii::Vector<double>                       dgap;
+      dealii::Vector<double>                       force;
+      dealii::FullMatrix<double>                   dforce;
+    };
+
+    /// The master surface made of the boundary faces with ids @p ids.
+    /// @p path names the contact pair in error messages.
+    MasterSurface(const Elasticity<dim>                      &elasticity,
+                  const std::set<dealii::types::boundary_id> &ids,
+                  const double                                fraction,
+                  const std::string                          &path);
+
+    /// Current positions x = X + u (U: displacement first), and the search
+    /// tree of the pieces' bounding boxes.
+    void
+    set_displacement(const VectorType &U);
+
+    /// Projection of the slave point @p x.
+    Projection
+    project(const dealii::Point<dim> &x) const;
+
+    /// Linearization at projection @p p of the slave point @p x with slave
+    /// DoFs @p slave_dofs.
+    void
+    linearize(
+      const Projection                                       &p,
+      const dealii::Point<dim>                               &x,
+      const std::array<dealii::types::global_dof_index, dim> &slave_dofs,
+      Linearization                                          &l) const;
+
+    /// Master nodes that a slave point at @p x may couple to while it stays
+    /// within @p radius of where it is (for the sparsity pattern).
+    std::vector<unsigned int>
+    nodes_near(const dealii::Point<dim> &x, const double radius) const;
+
+    /// Master nodes whose positions enter projection @p p.
+    std::vector<unsigned int>
+    nodes_of(const Projection &p) const;
+
+    /// Position and normal of piece @p piece at @p xi (current
+    /// configuration).
+    std::pair<dealii::Point<dim>, dealii::Tensor<1, dim>>
+    evaluate(const unsigned int piece, const Xi &xi) const;
+
+    const std::vector<Node> &
+    get_nodes() const
+    {
+      return nodes;
+    }
+    const std::vector<Facet> &
+    get_facets() const
+    {
+      return facets;
+    }
+    const std::vector<Piece> &
+    get_pieces() const
+    {
+      return pieces;
+    }
+    /// Largest facet diameter (reference configuration).
+    double
+    facet_size() const
+    {
+      return max_size;
+    }
+    unsigned int
+    degree() const
+    {
+      return polynomial_degree;
+    }
+
+  private:
+    void
+    build_pieces_2d(const std::array<std::set<dealii::types::global_dof_index>,
+                                     dim> &symmetric_dofs,
+                    const bool             axisymmetric,
+                    const std::string     &path);
+    void
+    build_neighbours_3d();
+
+    template <typename T, typename Positions>
+    void
+    geometry(const Piece                             &piece,
+             const std::array<T, dim - 1>            &xi,
+             const Positions                         &pos,
+             std::array<T, dim>                      &x,
+             std::array<std::array<T, dim>, dim - 1> &a,
+             std::array<T, dim>                      &n,
+             std::vector<T>                          *weights) const;
+
+    template <typename T, typename Positions>
+    void
+    blended_normal(const Piece                                   &piece,
+                   const std::array<T, dim - 1>                  &xi,
+                   const Positions                               &pos,
+                   const std::array<std::array<T, dim>, dim - 1> &a,
+                   std::array<T, dim>                            &n) const;
+
+    template <typename T, typename Positions>
+    std::array<T, dim>
+    facet_normal(const unsigned int            facet,
+                 const std::array<T, dim - 1> &xi,
+                 const Positions              &pos) const;
+
+    template <typename T, typename Positions>
+    void
+    residual(const Piece                  &piece,
+             const std::array<T, dim - 1> &xi,
+             const std::array<T, dim>     &xs,
+             const Positions              &pos,
+             const bool                    vertex,
+             std::array<T, dim - 1>       &R) const;
+
+    Projection
+    project_on(const unsigned int piece, const dealii::Point<dim> &x) const;
+
+    /// Nodes of the facets that share a node with @p facet (3D smoothing).
+    std::vector<unsigned int>
+    patch(const unsigned int facet) const;
+
+    std::vector<Node>               nodes;
+    std::vector<Facet>              facets;
+    std::vector<Piece>              pieces;
+    std::vector<dealii::Point<dim>> x; ///< current node positions
+    /// 3D: per facet corner (lexicographic), the (facet, corner) pairs of
+    /// all facets at that node.
+    std::vector<
+      std::array<std::vector<std::pair<unsigned int, unsigned int>>, 4>>
+                 corners;
+    double       fraction;
+    double       max_size          = 0.;
+    unsigned int polynomial_degree = 1;
+    using Leaf = std::pair<dealii::BoundingBox<dim>, unsigned int>;
+    dealii::RTree<Leaf> tree;
+  };
+} // namespace glide

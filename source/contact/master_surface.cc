@@ -1,0 +1,1184 @@
+#include <glide/contact/master_surface.h>
+#include <glide/scene/input_error.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/fe/fe_system.h>
+
+#include <Sacado.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace glide
+{
+  using namespace dealii;
+
+  namespace
+  {
+    using Fad = Sacado::Fad::DFad<double>;
+
+    double
+    plain(const double x)
+    {
+      return x;
+    }
+    double
+    plain(const Fad &x)
+    {
+      return x.val();
+    }
+
+    template <typename T, std::size_t n>
+    T
+    dot(const std::array<T, n> &a, const std::array<T, n> &b)
+    {
+      T s = a[0] * b[0];
+      for (std::size_t i = 1; i < n; ++i)
+        s += a[i] * b[i];
+      return s;
+    }
+
+    template <typename T, std::size_t n>
+    void
+    normalize(std::array<T, n> &a)
+    {
+      using std::sqrt;
+      const T length = sqrt(dot(a, a));
+      for (auto &x : a)
+        x /= length;
+    }
+
+    /// 1D Lagrange basis of degree p (1 or 2) on [0, 1], nodes equispaced.
+    template <typename T>
+    void
+    lagrange(const unsigned int p, const T &s, T *N, T *dN)
+    {
+      if (p == 1)
+        {
+          N[0]  = 1. - s;
+          N[1]  = s;
+          dN[0] = -1.;
+          dN[1] = 1.;
+        }
+      else
+        {
+          N[0]  = (2. * s - 3.) * s + 1.;
+          N[1]  = 4. * s * (1. - s);
+          N[2]  = (2. * s - 1.) * s;
+          dN[0] = 4. * s - 3.;
+          dN[1] = 4. - 8. * s;
+          dN[2] = 4. * s - 1.;
+        }
+    }
+
+    /// Cubic Hermite basis h00, h10, h01, h11 and derivatives.
+    template <typename T>
+    void
+    hermite(const T &t, T *h, T *dh)
+    {
+      const T t2 = t * t, t3 = t2 * t;
+      h[0]  = 2. * t3 - 3. * t2 + 1.;
+      h[1]  = t3 - 2. * t2 + t;
+      h[2]  = -2. * t3 + 3. * t2;
+      h[3]  = t3 - t2;
+      dh[0] = 6. * t2 - 6. * t;
+      dh[1] = 3. * t2 - 4. * t + 1.;
+      dh[2] = -6. * t2 + 6. * t;
+      dh[3] = 3. * t2 - 2. * t;
+    }
+
+    /// Blending weights (towards xi = 0, interior, towards xi = 1) of the
+    /// 3D normal smoothing: a C1 step over the band of width f.
+    template <typename T>
+    std::array<T, 3>
+    blend(const T &xi, const double f)
+    {
+      std::array<T, 3> w{{T(0.), T(1.), T(0.)}};
+      if (f <= 0.)
+        return w;
+      auto step = [](const T &s) -> T { return s * s * (3. - 2. * s); };
+      if (plain(xi) < f)
+        {
+          const T s = plain(xi) <= 0. ? T(0.) : T(xi / f);
+          w[1]      = step(s);
+          w[0]      = 1. - w[1];
+        }
+      else if (plain(xi) > 1. - f)
+        {
+          const T s = plain(xi) >= 1. ? T(0.) : T((1. - xi) / f);
+          w[1]      = step(s);
+          w[2]      = 1. - w[1];
+        }
+      return w;
+    }
+
+    template <int dim>
+    std::string
+    where(const Point<dim> &p)
+    {
+      std::ostringstream s;
+      s << "(" << p << ")";
+      return s.str();
+    }
+
+    /// Solve the (dim-1)x(dim-1) system J d = -R on the coordinates marked
+    /// free; returns false if singular.
+    template <std::size_t n>
+    bool
+    newton_step(const std::array<std::array<double, n>, n> &J,
+                const std::array<double, n>                &R,
+                const std::array<bool, n>                  &fixed,
+                std::array<double, n>                      &d)
+    {
+      d.fill(0.);
+      if constexpr (n == 1)
+        {
+          if (fixed[0])
+            return true;
+          if (std::abs(J[0][0]) < 1e-300)
+            return false;
+          d[0] = -R[0] / J[0][0];
+          return true;
+        }
+      else
+        {
+          if (fixed[0] && fixed[1])
+            return true;
+          for (unsigned int a = 0; a < 2; ++a)
+            if (fixed[a])
+              {
+                const unsigned int b = 1 - a;
+                if (std::abs(J[b][b]) < 1e-300)
+                  return false;
+                d[b] = -R[b] / J[b][b];
+                return true;
+              }
+          const double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+          if (std::abs(det) < 1e-300)
+            return false;
+          d[0] = -(J[1][1] * R[0] - J[0][1] * R[1]) / det;
+          d[1] = -(-J[1][0] * R[0] + J[0][0] * R[1]) / det;
+          return true;
+        }
+    }
+  } // namespace
+
+  template <int dim>
+  MasterSurface<dim>::MasterSurface(const Elasticity<dim> &elasticity,
+                                    const std::set<types::boundary_id> &ids,
+                                    const double       fraction,
+                                    const std::string &path)
+    : fraction(fraction)
+  {
+    const auto &dof_handler = elasticity.get_dof_handler();
+    const auto &fe          = dof_handler.get_fe();
+    const auto &mapping     = elasticity.get_mapping();
+    const auto &unit_points = fe.get_unit_support_points();
+    polynomial_degree       = fe.degree;
+    const unsigned int p    = polynomial_degree;
+    const bool         axisymmetric =
+      elasticity.get_scene().analysis == AnalysisType::axisymmetric;
+
+    std::array<std::set<types::global_dof_index>, dim> symmetric;
+    std::map<types::global_dof_index, unsigned int>    node_index;
+    std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        for (const auto f : cell->face_indices())
+          {
+            if (!cell->face(f)->at_boundary())
+              continue;
+            const auto id        = cell->face(f)->boundary_id();
+            const bool is_master = ids.count(id) > 0;
+            int        symmetry  = -1;
+            for (unsigned int c = 0; c < dim; ++c)
+              for (const auto s : elasticity.symmetry_boundary_ids(c))
+                if (s == id)
+                  symmetry = c;
+            if (!is_master && symmetry < 0)
+              continue;
+            cell->get_dof_indices(cell_dofs);
+            // The face's nodes: base index -> cell DoFs per component.
+            std::map<unsigned int, std::array<unsigned int, dim>> face_nodes;
+            for (unsigned int i = 0; i < fe.n_dofs_per_face(f); ++i)
+              {
+                const unsigned int k =
+                  fe.face_to_cell_index(i,
+                                        f,
+                                        cell->face_orientation(f),
+                                        cell->face_flip(f),
+                                        cell->face_rotation(f));
+                const auto ci = fe.system_to_component_index(k);
+                face_nodes[ci.second][ci.first] = k;
+              }
+            std::vector<Node> found;
+            for (const auto &[base, k] : face_nodes)
+              {
+                Node node;
+                for (unsigned int c = 0; c < dim; ++c)
+                  node.dofs[c] = cell_dofs[k[c]];
+                node.X =
+                  mapping.transform_unit_to_real_cell(cell, unit_points[k[0]]);
+                found.push_back(node);
+                if (symmetry >= 0)
+                  symmetric[symmetry].insert(node.dofs[symmetry]);
+              }
+            if (!is_master)
+              continue;
+
+            // Lexicographic order: match the nodes to the points at
+            // parameters (i/p, j/p) of the face's (bi)linear vertex map.
+            const auto         face = cell->face(f);
+            Facet              facet;
+            const unsigned int n_j = dim == 2 ? 1 : p + 1;
+            for (unsigned int j = 0; j < n_j; ++j)
+              for (unsigned int i = 0; i <= p; ++i)
+                {
+                  const double s = double(i) / p, t = double(j) / p;
+                  Point<dim>   target;
+                  if (dim == 2)
+                    target =
+                      face->vertex(0) + s * (face->vertex(1) - face->vertex(0));
+                  else
+                    target = (1 - s) * (1 - t) * face->vertex(0) +
+                             s * (1 - t) * face->vertex(1) +
+                             (1 - s) * t * face->vertex(2) +
+                             s * t * face->vertex(3);
+                  unsigned int best = 0;
+                  for (unsigned int k = 1; k < found.size(); ++k)
+                    if (found[k].X.distance(target) <
+                        found[best].X.distance(target))
+                      best = k;
+                  const auto [it, inserted] =
+                    node_index.emplace(found[best].dofs[0], nodes.size());
+                  if (inserted)
+                    nodes.push_back(found[best]);
+                  facet.nodes.push_back(it->second);
+                }
+            facet.neighbours.fill(-1);
+            facets.push_back(facet);
+            max_size = std::max(max_size, face->diameter());
+
+            // Outward orientation: the facet's normal must point away from
+            // its cell.
+            x.resize(nodes.size());
+            for (const auto k : facets.back().nodes)
+              x[k] = nodes[k].X;
+            pieces.assign(1, Piece());
+            pieces[0].facet = facets.size() - 1;
+            for (const auto k : facets.back().nodes)
+              pieces[0].vnodes.emplace_back(k, false);
+            pieces[0].upper.fill(1.);
+            Xi middle;
+            middle.fill(0.5);
+            const auto center = evaluate(0, middle);
+            if (center.second * (face->center() - cell->center()) < 0)
+              {
+                auto &v = facets.back().nodes;
+                if (dim == 2)
+                  std::reverse(v.begin(), v.end());
+                else
+                  {
+                    const auto old = v;
+                    for (unsigned int j = 0; j <= p; ++j)
+                      for (unsigned int i = 0; i <= p; ++i)
+                        v[i + (p + 1) * j] = old[j + (p + 1) * i];
+                  }
+              }
+          }
+      }
+    x.resize(nodes.size());
+    for (unsigned int k = 0; k < nodes.size(); ++k)
+      x[k] = nodes[k].X;
+    pieces.clear();
+    if (facets.empty())
+      return;
+    if (dim == 2)
+      build_pieces_2d(symmetric, axisymmetric, path);
+    else
+      build_neighbours_3d();
+    set_displacement(VectorType());
+  }
+
+  template <int dim>
+  void
+  MasterSurface<dim>::build_pieces_2d(
+    const std::array<std::set<types::global_dof_index>, dim> &symmetric,
+    const bool                                                axisymmetric,
+    const std::string                                        &path)
+  {
+    const unsigned int p = polynomial_degree;
+    const double       f = fraction;
+    // Chains: each node starts at most one facet and ends at most one.
+    std::vector<int> starts(nodes.size(), -1), ends(nodes.size(), -1);
+    for (unsigned int i = 0; i < facets.size(); ++i)
+      {
+        const auto s = facets[i].nodes.front(), e = facets[i].nodes.back();
+        require(starts[s] < 0 && ends[e] < 0,
+                path +
+                  ": the master surface is not a simple chain of "
+                  "consistently oriented facets at node " +
+                  where(nodes[starts[s] >= 0 ? s : e].X) +
+                  " (it branches, or joins faces of bodies on opposite "
+                  "sides); split it into several surfaces.");
+        starts[s] = i;
+        ends[e]   = i;
+      }
+    for (auto &facet : facets)
+      {
+        facet.neighbours[0] = ends[facet.nodes.front()];
+        facet.neighbours[1] = starts[facet.nodes.back()];
+      }
+
+    // Unit tangents at the ends of a facet, in the reference configuration.
+    auto tangent = [&](const unsigned int facet, const double s) {
+      std::array<double, 3> N, dN;
+      lagrange(p, s, N.data(), dN.data());
+      Tensor<1, dim> t;
+      for (unsigned int k = 0; k <= p; ++k)
+        t += dN[k] * nodes[facets[facet].nodes[k]].X;
+      return t / t.norm();
+    };
+    // The symmetry plane at a chain end node: axis, or -1.
+    auto mirror_axis = [&](const unsigned int node) {
+      const double tolerance = 1e-10 * std::max(1., max_size);
+      if (axisymmetric && std::abs(nodes[node].X[0]) < tolerance)
+        return 0;
+      for (unsigned int c = 0; c < dim; ++c)
+        if (symmetric[c].count(nodes[node].dofs[c]))
+          return int(c);
+      return -1;
+    };
+    auto kink = [](const Tensor<1, dim> &a, const Tensor<1, dim> &b) {
+      return 1. - a * b > 1e-10;
+    };
+
+    std::array<double, 3> N1, dN1, N2, dN2;
+    lagrange(p, 1. - f, N1.data(), dN1.data());
+    lagrange(p, f, N2.data(), dN2.data());
+    for (unsigned int i = 0; i < facets.size(); ++i)
+      {
+        const auto &facet = facets[i];
+        Piece       piece;
+        piece.kind  = PieceKind::lagrange;
+        piece.facet = i;
+        piece.upper.fill(1.);
+        for (const auto k : facet.nodes)
+          piece.vnodes.emplace_back(k, false);
+
+        // Start of the facet.
+        const unsigned int start = facet.nodes.front();
+        if (facet.neighbours[0] >= 0)
+          piece.begin =
+            (f > 0 && kink(tangent(facet.neighbours[0], 1.), tangent(i, 0.))) ?
+              f :
+              0.;
+        else if (const int a = mirror_axis(start); a >= 0)
+          {
+            // Mirror image of this facet across the plane x_a = const
+            // precedes it (R2.1, R2.2).
+            Tensor<1, dim> t = tangent(i, 0.), m = t;
+            m[a] = -m[a];
+            if (f > 0 && kink(-m, t))
+              {
+                piece.begin = f;
+                Piece transition;
+                transition.kind        = PieceKind::hermite;
+                transition.facet       = i;
+                transition.mirror_node = start;
+                transition.mirror_axis = a;
+                transition.upper.fill(1.);
+                for (unsigned int k = 0; k <= p; ++k)
+                  {
+                    transition.vnodes.emplace_back(facet.nodes[k], true);
+                    transition.coefficients.push_back(
+                      {{N2[k], -2. * f * dN2[k], 0., 0.}});
+                  }
+                for (unsigned int k = 0; k <= p; ++k)
+                  {
+                    transition.vnodes.emplace_back(facet.nodes[k], false);
+                    transition.coefficients.push_back(
+                      {{0., 0., N2[k], 2. * f * dN2[k]}});
+                  }
+                pieces.push_back(transition);
+              }
+          }
+        else
+          piece.begin = -0.05;
+
+        // End of the facet, and the transition to the next facet.
+        const unsigned int end = facet.nodes.back();
+        if (facet.neighbours[1] >= 0)
+          {
+            const unsigned int next = facet.neighbours[1];
+            if (f > 0 && kink(tangent(i, 1.), tangent(next, 0.)))
+              {
+                piece.end = 1. - f;
+                Piece transition;
+                transition.kind  = PieceKind::hermite;
+                transition.facet = i;
+                transition.upper.fill(1.);
+                for (unsigned int k = 0; k <= p; ++k)
+                  {
+                    transition.vnodes.emplace_back(facet.nodes[k], false);
+                    transition.coefficients.push_back(
+                      {{N1[k], 2. * f * dN1[k], 0., 0.}});
+                  }
+                for (unsigned int k = 0; k <= p; ++k)
+                  {
+                    transition.vnodes.emplace_back(facets[next].nodes[k],
+                                                   false);
+                    transition.coefficients.push_back(
+                      {{0., 0., N2[k], 2. * f * dN2[k]}});
+                  }
+                pieces.push_back(transition);
+              }
+          }
+        else if (const int a = mirror_axis(end); a >= 0)
+          {
+            Tensor<1, dim> t = tangent(i, 1.), m = t;
+            m[a] = -m[a];
+            if (f > 0 && kink(t, -m))
+              {
+                piece.end = 1. - f;
+                Piece transition;
+                transition.kind        = PieceKind::hermite;
+                transition.facet       = i;
+                transition.mirror_node = end;
+                transition.mirror_axis = a;
+                transition.upper.fill(1.);
+                for (unsigned int k = 0; k <= p; ++k)
+                  {
+                    transition.vnodes.emplace_back(facet.nodes[k], false);
+                    transition.coefficients.push_back(
+                      {{N1[k], 2. * f * dN1[k], 0., 0.}});
+                  }
+                for (unsigned int k = 0; k <= p; ++k)
+                  {
+                    transition.vnodes.emplace_back(facet.nodes[k], true);
+                    transition.coefficients.push_back(
+                      {{0., 0., N1[k], -2. * f * dN1[k]}});
+                  }
+                pieces.push_back(transition);
+              }
+          }
+        else
+          piece.end = 1.05;
+        pieces.push_back(piece);
+      }
+  }
+
+  template <int dim>
+  void
+  MasterSurface<dim>::build_neighbours_3d()
+  {
+    const unsigned int p = polynomial_degree;
+    corners.resize(facets.size());
+    // Corner nodes in lexicographic order, and the edges' corners.
+    auto corner = [&](const unsigned int facet, const unsigned int v) {
+      const unsigned int i = (v % 2) * p, j = (v / 2) * p;
+      return facets[facet].nodes[i + (p + 1) * j];
+    };
+    const unsigned int edge_corners[4][2] = {{0, 2}, {1, 3}, {0, 1}, {2, 3}};
+    std::map<unsigned int, std::vector<std::pair<unsigned int, unsigned int>>>
+      at_node;
+    std::map<std::pair<unsigned int, unsigned int>,
+             std::vector<std::pair<unsigned int, unsigned int>>>
+      at_edge;
+    for (unsigned int i = 0; i < facets.size(); ++i)
+      {
+        for (unsigned int v = 0; v < 4; ++v)
+          at_node[corner(i, v)].emplace_back(i, v);
+        for (unsigned int e = 0; e < 4; ++e)
+          {
+            auto a = corner(i, edge_corners[e][0]),
+                 b = corner(i, edge_corners[e][1]);
+            at_edge[{std::min(a, b), std::max(a, b)}].emplace_back(i, e);
+          }
+      }
+    for (const auto &[edge, list] : at_edge)
+      {
+        require(list.size() <= 2,
+                "A master surface has an edge shared by more than two facets "
+                "at " +
+                  where(nodes[edge.first].X) +
+                  "; split it into several surfaces.");
+        if (list.size() == 2)
+          {
+            facets[list[0].first].neighbours[list[0].second] = list[1].first;
+            facets[list[1].first].neighbours[list[1].second] = list[0].first;
+          }
+      }
+    for (unsigned int i = 0; i < facets.size(); ++i)
+      {
+        for (unsigned int v = 0; v < 4; ++v)
+          corners[i][v] = at_node[corner(i, v)];
+        Piece piece;
+        piece.facet = i;
+        for (const auto k : facets[i].nodes)
+          piece.vnodes.emplace_back(k, false);
+        for (unsigned int a = 0; a < 2; ++a)
+          {
+            piece.lower[a] = facets[i].neighbours[2 * a] < 0 ? -0.05 : 0.;
+            piece.upper[a] = facets[i].neighbours[2 * a + 1] < 0 ? 1.05 : 1.;
+          }
+        pieces.push_back(piece);
+      }
+  }
+
+  template <int dim>
+  void
+  MasterSurface<dim>::set_displacement(const VectorType &U)
+  {
+    for (unsigned int k = 0; k < nodes.size(); ++k)
+      for (unsigned int d = 0; d < dim; ++d)
+        x[k][d] = nodes[k].X[d] + (U.size() > 0 ? U[nodes[k].dofs[d]] : 0.);
+    std::vector<Leaf> boxes;
+    boxes.reserve(pieces.size());
+    for (unsigned int i = 0; i < pieces.size(); ++i)
+      {
+        const auto &piece = pieces[i];
+        Point<dim>  lo = x[piece.vnodes[0].first], hi = lo;
+        auto        include = [&](const Point<dim> &y) {
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              lo[d] = std::min(lo[d], y[d]);
+              hi[d] = std::max(hi[d], y[d]);
+            }
+        };
+        for (const auto &[k, mirrored] : piece.vnodes)
+          {
+            Point<dim> y = x[k];
+            if (mirrored)
+              y[piece.mirror_axis] =
+                2. * x[piece.mirror_node][piece.mirror_axis] -
+                y[piece.mirror_axis];
+            include(y);
+          }
+        const double margin = 0.1 * lo.distance(hi) + 1e-12 * max_size;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            lo[d] -= margin;
+            hi[d] += margin;
+          }
+        boxes.emplace_back(BoundingBox<dim>(std::make_pair(lo, hi)), i);
+      }
+    tree = pack_rtree(boxes);
+  }
+
+  template <int dim>
+  template <typename T, typename Positions>
+  std::array<T, dim>
+  MasterSurface<dim>::facet_normal(const unsigned int            facet,
+                                   const std::array<T, dim - 1> &xi,
+                                   const Positions              &pos) const
+  {
+    const unsigned int p = polynomial_degree;
+    std::array<T, 3>   Ns, dNs, Nt, dNt;
+    lagrange(p, xi[0], Ns.data(), dNs.data());
+    lagrange(p, xi[dim - 2], Nt.data(), dNt.data());
+    std::array<std::array<T, dim>, 2> a;
+    for (auto &v : a)
+      v.fill(T(0.));
+    for (unsigned int j = 0; j <= p; ++j)
+      for (unsigned int i = 0; i <= p; ++i)
+        {
+          const auto y = pos(facets[facet].nodes[i + (p + 1) * j]);
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              a[0][d] += dNs[i] * Nt[j] * y[d];
+              a[1][d] += Ns[i] * dNt[j] * y[d];
+            }
+        }
+    std::array<T, dim> n;
+    n[0]       = a[0][1] * a[1][dim - 1] - a[0][dim - 1] * a[1][1];
+    n[1]       = a[0][dim - 1] * a[1][0] - a[0][0] * a[1][dim - 1];
+    n[dim - 1] = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+    normalize(n);
+    return n;
+  }
+
+  template <int dim>
+  template <typename T, typename Positions>
+  void
+  MasterSurface<dim>::geometry(const Piece                             &piece,
+                               const std::array<T, dim - 1>            &xi,
+                               const Positions                         &pos,
+                               std::array<T, dim>                      &point,
+                               std::array<std::array<T, dim>, dim - 1> &a,
+                               std::array<T, dim>                      &n,
+                               std::vector<T> *weights) const
+  {
+    const unsigned int                  p  = polynomial_degree;
+    const unsigned int                  nv = piece.vnodes.size();
+    std::vector<T>                      w(nv);
+    std::vector<std::array<T, dim - 1>> dw(nv);
+    if (piece.kind == PieceKind::hermite)
+      {
+        std::array<T, 4> h, dh;
+        hermite(xi[0], h.data(), dh.data());
+        for (unsigned int j = 0; j < nv; ++j)
+          {
+            const auto &c = piece.coefficients[j];
+            w[j] = c[0] * h[0] + c[1] * h[1] + c[2] * h[2] + c[3] * h[3];
+            dw[j][0] =
+              c[0] * dh[0] + c[1] * dh[1] + c[2] * dh[2] + c[3] * dh[3];
+          }
+      }
+    else if (dim == 2)
+      {
+        const double     length = piece.end - piece.begin;
+        const T          s      = piece.begin + length * xi[0];
+        std::array<T, 3> N, dN;
+        lagrange(p, s, N.data(), dN.data());
+        for (unsigned int j = 0; j < nv; ++j)
+          {
+            w[j]     = N[j];
+            dw[j][0] = length * dN[j];
+          }
+      }
+    else
+      {
+        std::array<T, 3> Ns, dNs, Nt, dNt;
+        lagrange(p, xi[0], Ns.data(), dNs.data());
+        lagrange(p, xi[dim - 2], Nt.data(), dNt.data());
+        for (unsigned int j = 0; j <= p; ++j)
+          for (unsigned int i = 0; i <= p; ++i)
+            {
+              const unsigned int k = i + (p + 1) * j;
+              w[k]                 = Ns[i] * Nt[j];
+              dw[k][0]             = dNs[i] * Nt[j];
+              dw[k][dim - 2]       = Ns[i] * dNt[j];
+            }
+      }
+
+    point.fill(T(0.));
+    for (auto &v : a)
+      v.fill(T(0.));
+    for (unsigned int j = 0; j < nv; ++j)
+      {
+        auto y = pos(piece.vnodes[j].first);
+        if (piece.vnodes[j].second)
+          {
+            const unsigned int m = piece.mirror_axis;
+            y[m]                 = 2. * pos(piece.mirror_node)[m] - y[m];
+          }
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            point[d] += w[j] * y[d];
+            for (unsigned int b = 0; b < dim - 1; ++b)
+              a[b][d] += dw[j][b] * y[d];
+          }
+      }
+    if (weights)
+      *weights = w;
+
+    if constexpr (dim == 2)
+      {
+        n[0] = a[0][1];
+        n[1] = -a[0][0];
+        normalize(n);
+      }
+    else
+      blended_normal(piece, xi, pos, a, n);
+  }
+
+  template <int dim>
+  template <typename T, typename Positions>
+  void
+  MasterSurface<dim>::blended_normal(
+    const Piece                                   &piece,
+    const std::array<T, dim - 1>                  &xi,
+    const Positions                               &pos,
+    const std::array<std::array<T, dim>, dim - 1> &a,
+    std::array<T, dim>                            &n) const
+  {
+    // 3D: the facet's own normal, blended towards the edges and corners.
+    n[0]       = a[0][1] * a[dim - 2][dim - 1] - a[0][dim - 1] * a[dim - 2][1];
+    n[1]       = a[0][dim - 1] * a[dim - 2][0] - a[0][0] * a[dim - 2][dim - 1];
+    n[dim - 1] = a[0][0] * a[dim - 2][1] - a[0][1] * a[dim - 2][0];
+    normalize(n);
+    if (fraction <= 0.)
+      return;
+    const auto bs = blend(xi[0], fraction), bt = blend(xi[dim - 2], fraction);
+    if (plain(bs[1]) == 1. && plain(bt[1]) == 1.)
+      return;
+    const unsigned int facet       = piece.facet;
+    auto               edge_normal = [&](const unsigned int e) {
+      const std::array<double, 2> mid[4] = {{{0., 0.5}},
+                                            {{1., 0.5}},
+                                            {{0.5, 0.}},
+                                            {{0.5, 1.}}};
+      std::array<T, dim - 1>      m;
+      for (unsigned int b = 0; b < dim - 1; ++b)
+        m[b] = mid[e][b];
+      auto      ne = facet_normal<T>(facet, m, pos);
+      const int g  = facets[facet].neighbours[e];
+      if (g < 0)
+        return ne;
+      // The neighbour's normal at the midpoint of its edge towards us.
+      for (unsigned int e2 = 0; e2 < 4; ++e2)
+        if (facets[g].neighbours[e2] == int(facet))
+          {
+            std::array<T, dim - 1> m2;
+            for (unsigned int b = 0; b < dim - 1; ++b)
+              m2[b] = mid[e2][b];
+            const auto ng = facet_normal<T>(g, m2, pos);
+            for (unsigned int d = 0; d < dim; ++d)
+              ne[d] += ng[d];
+            normalize(ne);
+            break;
+          }
+      return ne;
+    };
+    auto corner_normal = [&](const unsigned int v) {
+      std::array<T, dim> nc;
+      nc.fill(T(0.));
+      for (const auto &[g, w] : corners[facet][v])
+        {
+          std::array<T, dim - 1> c;
+          c[0]          = double(w % 2);
+          c[dim - 2]    = double(w / 2);
+          const auto ng = facet_normal<T>(g, c, pos);
+          for (unsigned int d = 0; d < dim; ++d)
+            nc[d] += ng[d];
+        }
+      normalize(nc);
+      return nc;
+    };
+    std::array<T, dim> blended;
+    blended.fill(T(0.));
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = 0; j < 3; ++j)
+        {
+          const double weight = plain(bs[i]) * plain(bt[j]);
+          if (weight == 0. && !(i == 1 && j == 1))
+            continue;
+          std::array<T, dim> c;
+          if (i == 1 && j == 1)
+            c = n;
+          else if (j == 1)
+            c = edge_normal(i == 0 ? 0 : 1);
+          else if (i == 1)
+            c = edge_normal(j == 0 ? 2 : 3);
+          else
+            c = corner_normal((i == 0 ? 0 : 1) + (j == 0 ? 0 : 2));
+          const T wij = bs[i] * bt[j];
+          for (unsigned int d = 0; d < dim; ++d)
+            blended[d] += wij * c[d];
+        }
+    normalize(blended);
+    n = blended;
+  }
+
+  template <int dim>
+  template <typename T, typename Positions>
+  void
+  MasterSurface<dim>::residual(const Piece                  &piece,
+                               const std::array<T, dim - 1> &xi,
+                               const std::array<T, dim>     &xs,
+                               const Positions              &pos,
+                               const bool                    vertex,
+                               std::array<T, dim - 1>       &R) const
+  {
+    std::array<T, dim>                      y, n;
+    std::array<std::array<T, dim>, dim - 1> a;
+    geometry<T>(piece, xi, pos, y, a, n, nullptr);
+    std::array<T, dim> r;
+    for (unsigned int d = 0; d < dim; ++d)
+      r[d] = xs[d] - y[d];
+    if (!vertex)
+      {
+        const T rn = dot(r, n);
+        for (unsigned int d = 0; d < dim; ++d)
+          r[d] -= rn * n[d];
+      }
+    for (unsigned int b = 0; b < dim - 1; ++b)
+      R[b] = dot(r, a[b]);
+  }
+
+  template <int dim>
+  std::pair<Point<dim>, Tensor<1, dim>>
+  MasterSurface<dim>::evaluate(const unsigned int piece, const Xi &xi) const
+  {
+    auto pos = [&](const unsigned int k) {
+      std::array<double, dim> y;
+      for (unsigned int d = 0; d < dim; ++d)
+        y[d] = x[k][d];
+      return y;
+    };
+    std::array<double, dim>                      y, n;
+    std::array<std::array<double, dim>, dim - 1> a;
+    geometry<double>(pieces[piece], xi, pos, y, a, n, nullptr);
+    Point<dim>     point;
+    Tensor<1, dim> normal;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        point[d]  = y[d];
+        normal[d] = n[d];
+      }
+    return {point, normal};
+  }
+
+  template <int dim>
+  typename MasterSurface<dim>::Projection
+  MasterSurface<dim>::project_on(const unsigned int i,
+                                 const Point<dim>  &xs) const
+  {
+    const Piece &piece = pieces[i];
+    Projection   result;
+    result.piece = i;
+    auto pos     = [&](const unsigned int k) {
+      std::array<Fad, dim> y;
+      for (unsigned int d = 0; d < dim; ++d)
+        y[d] = x[k][d];
+      return y;
+    };
+    std::array<Fad, dim> s;
+    for (unsigned int d = 0; d < dim; ++d)
+      s[d] = xs[d];
+    Xi xi;
+    for (unsigned int b = 0; b < dim - 1; ++b)
+      xi[b] = 0.5 * (piece.lower[b] + piece.upper[b]);
+    std::array<bool, dim - 1> fixed{};
+    bool                      converged = false;
+    for (unsigned int it = 0; it < 50 && !converged; ++it)
+      {
+        std::array<Fad, dim - 1> xf, R;
+        for (unsigned int b = 0; b < dim - 1; ++b)
+          xf[b] = Fad(dim - 1, b, xi[b]);
+        residual<Fad>(piece, xf, s, pos, false, R);
+        std::array<std::array<double, dim - 1>, dim - 1> J;
+        std::array<double, dim - 1>                      r, step;
+        for (unsigned int b = 0; b < dim - 1; ++b)
+          {
+            r[b] = R[b].val();
+            for (unsigned int c = 0; c < dim - 1; ++c)
+              J[b][c] = R[b].dx(c);
+          }
+        // Projected Newton: a coordinate at its bound whose step points out
+        // stays there.
+        fixed.fill(false);
+        if (!newton_step(J, r, fixed, step))
+          return result;
+        for (unsigned int b = 0; b < dim - 1; ++b)
+          fixed[b] = (xi[b] <= piece.lower[b] && step[b] < 0) ||
+                     (xi[b] >= piece.upper[b] && step[b] > 0);
+        if (!newton_step(J, r, fixed, step))
+          return result;
+        double change = 0;
+        for (unsigned int b = 0; b < dim - 1; ++b)
+          {
+            // Damped: at most half the parameter range per iteration.
+            const double d = std::max(-0.5, std::min(0.5, step[b]));
+            const double v =
+              std::max(piece.lower[b], std::min(piece.upper[b], xi[b] + d));
+            change = std::max(change, std::abs(v - xi[b]));
+            xi[b]  = v;
+          }
+        converged = change < 1e-13;
+      }
+    if (!converged)
+      return result;
+    result.found   = true;
+    result.xi      = xi;
+    result.clamped = fixed;
+    for (const bool c : fixed)
+      result.vertex = result.vertex || c;
+    const auto [y, n] = evaluate(i, xi);
+    result.point      = y;
+    result.normal     = n;
+    result.gap        = (xs - y) * n;
+    if (result.vertex)
+      {
+        // The closest point of an edge or node: contact along r.
+        const double distance = (xs - y).norm();
+        const double sign     = result.gap >= 0 ? 1. : -1.;
+        result.gap            = sign * distance;
+        if (distance > 0)
+          result.normal = sign * (xs - y) / distance;
+      }
+    return result;
+  }
+
+  template <int dim>
+  typename MasterSurface<dim>::Projection
+  MasterSurface<dim>::project(const Point<dim> &xs) const
+  {
+    namespace bgi = boost::geometry::index;
+    Projection best, best_vertex;
+    if (pieces.empty())
+      return best;
+    const double radius = 1.5 * max_size;
+    Point<dim>   lo = xs, hi = xs;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        lo[d] -= radius;
+        hi[d] += radius;
+      }
+    std::vector<Leaf> candidates;
+    tree.query(bgi::intersects(BoundingBox<dim>(std::make_pair(lo, hi))),
+               std::back_inserter(candidates));
+    std::sort(candidates.begin(),
+              candidates.end(),
+              [](const Leaf &a, const Leaf &b) { return a.second < b.second; });
+    double best_distance = std::numeric_limits<double>::max();
+    for (const auto &candidate : candidates)
+      {
+        const Projection p = project_on(candidate.second, xs);
+        if (!p.found)
+          continue;
+        if (!p.vertex)
+          {
+            if (!best.found || std::abs(p.gap) < std::abs(best.gap))
+              best = p;
+            continue;
+          }
+        // Clamped at a side beyond which there is no master: not in
+        // contact through this piece.
+        const Piece &piece  = pieces[p.piece];
+        bool         beyond = false;
+        for (unsigned int b = 0; b < dim - 1; ++b)
+          if (p.clamped[b])
+            {
+              if (dim == 2 && piece.kind == PieceKind::lagrange)
+                beyond = beyond || (p.xi[b] <= 0. && piece.begin < 0.) ||
+                         (p.xi[b] >= 1. && piece.end > 1.);
+              if (dim == 3)
+                beyond = beyond || p.xi[b] < 0. || p.xi[b] > 1.;
+            }
+        // The closest of these points decides; if it lies beyond the end
+        // of the master, the slave point is not in contact.
+        const double distance = std::abs(p.gap);
+        if (distance < best_distance)
+          {
+            best_distance = distance;
+            best_vertex   = p;
+            if (beyond)
+              best_vertex.found = false;
+          }
+      }
+    return best.found ? best : best_vertex;
+  }
+
+  template <int dim>
+  std::vector<unsigned int>
+  MasterSurface<dim>::patch(const unsigned int facet) const
+  {
+    std::vector<unsigned int> result;
+    for (const auto &list : corners[facet])
+      for (const auto &fv : list)
+        for (const auto k : facets[fv.first].nodes)
+          result.push_back(k);
+    std::sort(result.begin(), result.end());
+    result.erase(std::unique(result.begin(), result.end()), result.end());
+    return result;
+  }
+
+  template <int dim>
+  std::vector<unsigned int>
+  MasterSurface<dim>::nodes_of(const Projection &p) const
+  {
+    const Piece              &piece = pieces[p.piece];
+    std::vector<unsigned int> result;
+    for (const auto &v : piece.vnodes)
+      result.push_back(v.first);
+    if (piece.mirror_node >= 0)
+      result.push_back(piece.mirror_node);
+    if (dim == 3 && fraction > 0.)
+      {
+        bool band = false;
+        for (unsigned int b = 0; b < dim - 1; ++b)
+          band = band || p.xi[b] < fraction || p.xi[b] > 1. - fraction;
+        if (band)
+          for (const auto k : patch(piece.facet))
+            result.push_back(k);
+      }
+    std::sort(result.begin(), result.end());
+    result.erase(std::unique(result.begin(), result.end()), result.end());
+    return result;
+  }
+
+  template <int dim>
+  std::vector<unsigned int>
+  MasterSurface<dim>::nodes_near(const Point<dim> &xs,
+                                 const double      radius) const
+  {
+    namespace bgi = boost::geometry::index;
+    Point<dim> lo = xs, hi = xs;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        lo[d] -= radius;
+        hi[d] += radius;
+      }
+    std::vector<Leaf> candidates;
+    tree.query(bgi::intersects(BoundingBox<dim>(std::make_pair(lo, hi))),
+               std::back_inserter(candidates));
+    std::vector<unsigned int> result;
+    for (const auto &candidate : candidates)
+      {
+        const Piece &piece = pieces[candidate.second];
+        for (const auto &v : piece.vnodes)
+          result.push_back(v.first);
+        if (piece.mirror_node >= 0)
+          result.push_back(piece.mirror_node);
+        if (dim == 3 && fraction > 0.)
+          for (const auto k : patch(piece.facet))
+            result.push_back(k);
+      }
+    std::sort(result.begin(), result.end());
+    result.erase(std::unique(result.begin(), result.end()), result.end());
+    return result;
+  }
+
+  template <int dim>
+  void
+  MasterSurface<dim>::linearize(
+    const Projection                               &p,
+    const Point<dim>                               &xs,
+    const std::array<types::global_dof_index, dim> &slave_dofs,
+    Linearization                                  &l) const
+  {
+    const Piece                         &piece = pieces[p.piece];
+    const auto                           local = nodes_of(p);
+    const unsigned int                   n     = dim * (1 + local.size());
+    std::map<unsigned int, unsigned int> slot;
+    std::vector<std::array<Fad, dim>>    xl(local.size());
+    for (unsigned int i = 0; i < local.size(); ++i)
+      {
+        slot[local[i]] = i;
+        for (unsigned int d = 0; d < dim; ++d)
+          xl[i][d] = Fad(n, dim * (1 + i) + d, x[local[i]][d]);
+      }
+    auto pos = [&](const unsigned int k) { return xl[slot.at(k)]; };
+    std::array<Fad, dim> s;
+    for (unsigned int d = 0; d < dim; ++d)
+      s[d] = Fad(n, d, xs[d]);
+
+    // dR/dxi at the solution, in plain numbers, for the chord steps.
+    std::array<std::array<double, dim - 1>, dim - 1> J;
+    {
+      auto plain_pos = [&](const unsigned int k) {
+        std::array<Fad, dim> y;
+        for (unsigned int d = 0; d < dim; ++d)
+          y[d] = x[k][d];
+        return y;
+      };
+      std::array<Fad, dim> sp;
+      for (unsigned int d = 0; d < dim; ++d)
+        sp[d] = xs[d];
+      std::array<Fad, dim - 1> xf, R;
+      for (unsigned int b = 0; b < dim - 1; ++b)
+        xf[b] = Fad(dim - 1, b, p.xi[b]);
+      residual<Fad>(piece, xf, sp, plain_pos, p.vertex, R);
+      for (unsigned int b = 0; b < dim - 1; ++b)
+        for (unsigned int c = 0; c < dim - 1; ++c)
+          J[b][c] = R[b].dx(c);
+    }
+    // Two chord steps xi <- xi - J^{-1} R(xi, u): exact first derivatives
+    // of the projection point with respect to u (a clamped coordinate
+    // stays on its edge).
+    std::array<Fad, dim - 1> xi;
+    for (unsigned int b = 0; b < dim - 1; ++b)
+      xi[b] = p.xi[b];
+    for (unsigned int step = 0; step < 2; ++step)
+      {
+        std::array<Fad, dim - 1> R;
+        residual<Fad>(piece, xi, s, pos, p.vertex, R);
+        std::array<Fad, dim - 1> d;
+        if constexpr (dim == 2)
+          {
+            if (!p.clamped[0])
+              d[0] = -R[0] / J[0][0];
+            else
+              d[0] = 0.;
+          }
+        else
+          {
+            if (p.clamped[0] && p.clamped[1])
+              {
+                d[0] = 0.;
+                d[1] = 0.;
+              }
+            else if (p.clamped[0] || p.clamped[1])
+              {
+                const unsigned int b = p.clamped[0] ? 1 : 0;
+                d[b]                 = -R[b] / J[b][b];
+                d[1 - b]             = 0.;
+              }
+            else
+              {
+                const double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+                d[0]             = -(J[1][1] * R[0] - J[0][1] * R[1]) / det;
+                d[1]             = -(-J[1][0] * R[0] + J[0][0] * R[1]) / det;
+              }
+          }
+        for (unsigned int b = 0; b < dim - 1; ++b)
+          xi[b] += d[b];
+      }
+
+    std::array<Fad, dim>                      y, nrm;
+    std::array<std::array<Fad, dim>, dim - 1> a;
+    std::vector<Fad>                          w;
+    geometry<Fad>(piece, xi, pos, y, a, nrm, &w);
+    std::array<Fad, dim> r;
+    for (unsigned int d = 0; d < dim; ++d)
+      r[d] = s[d] - y[d];
+    Fad g;
+    if (p.vertex)
+      {
+        const Fad    distance = std::sqrt(dot(r, r));
+        const double sign     = p.gap >= 0 ? 1. : -1.;
+        g                     = sign * distance;
+        for (unsigned int d = 0; d < dim; ++d)
+          nrm[d] = sign * r[d] / distance;
+      }
+    else
+      g = dot(r, nrm);
+
+    // Force direction: the slave node gets n, virtual node j gets -w_j n
+    // (mirrored: -w_j M n, and -2 w_j n_a on the plane node's a-component).
+    std::vector<Fad> G(n, Fad(0.));
+    for (unsigned int d = 0; d < dim; ++d)
+      G[d] = nrm[d];
+    for (unsigned int j = 0; j < piece.vnodes.size(); ++j)
+      {
+        const auto [k, mirrored] = piece.vnodes[j];
+        const unsigned int base  = dim * (1 + slot.at(k));
+        for (unsigned int d = 0; d < dim; ++d)
+          G[base + d] -= (mirrored && d == piece.mirror_axis) ?
+                           Fad(-w[j] * nrm[d]) :
+                           Fad(w[j] * nrm[d]);
+        if (mirrored)
+          G[dim * (1 + slot.at(piece.mirror_node)) + piece.mirror_axis] -=
+            2. * w[j] * nrm[piece.mirror_axis];
+      }
+
+    l.dofs.resize(n);
+    for (unsigned int d = 0; d < dim; ++d)
+      l.dofs[d] = slave_dofs[d];
+    for (unsigned int i = 0; i < local.size(); ++i)
+      for (unsigned int d = 0; d < dim; ++d)
+        l.dofs[dim * (1 + i) + d] = nodes[local[i]].dofs[d];
+    l.gap = g.val();
+    for (unsigned int d = 0; d < dim; ++d)
+      l.normal[d] = nrm[d].val();
+    l.dgap.reinit(n);
+    l.force.reinit(n);
+    l.dforce.reinit(n, n);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        l.dgap(i)  = g.dx(i);
+        l.force(i) = G[i].val();
+        for (unsigned int j = 0; j < n; ++j)
+          l.dforce(i, j) = G[i].dx(j);
+      }
+  }
+
+  template class MasterSurface<2>;
+  template class MasterSurface<3>;
+} // namespace glide
