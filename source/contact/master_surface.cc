@@ -334,15 +334,6 @@ namespace glide
         facet.neighbours[1] = starts[facet.nodes.back()];
       }
 
-    // Unit tangents at the ends of a facet, in the reference configuration.
-    auto tangent = [&](const unsigned int facet, const double s) {
-      std::array<double, 3> N, dN;
-      lagrange(p, s, N.data(), dN.data());
-      Tensor<1, dim> t;
-      for (unsigned int k = 0; k <= p; ++k)
-        t += dN[k] * nodes[facets[facet].nodes[k]].X;
-      return t / t.norm();
-    };
     // The symmetry plane at a chain end node: axis, or -1.
     auto mirror_axis = [&](const unsigned int node) {
       const double tolerance = 1e-10 * std::max(1., max_size);
@@ -352,9 +343,6 @@ namespace glide
         if (symmetric[c].count(nodes[node].dofs[c]))
           return int(c);
       return -1;
-    };
-    auto kink = [](const Tensor<1, dim> &a, const Tensor<1, dim> &b) {
-      return 1. - a * b > 1e-10;
     };
 
     std::array<double, 3> N1, dN1, N2, dN2;
@@ -373,17 +361,12 @@ namespace glide
         // Start of the facet.
         const unsigned int start = facet.nodes.front();
         if (facet.neighbours[0] >= 0)
-          piece.begin =
-            (f > 0 && kink(tangent(facet.neighbours[0], 1.), tangent(i, 0.))) ?
-              f :
-              0.;
+          piece.begin = f;
         else if (const int a = mirror_axis(start); a >= 0)
           {
             // Mirror image of this facet across the plane x_a = const
             // precedes it (R2.1, R2.2).
-            Tensor<1, dim> t = tangent(i, 0.), m = t;
-            m[a] = -m[a];
-            if (f > 0 && kink(-m, t))
+            if (f > 0)
               {
                 piece.begin = f;
                 Piece transition;
@@ -415,7 +398,7 @@ namespace glide
         if (facet.neighbours[1] >= 0)
           {
             const unsigned int next = facet.neighbours[1];
-            if (f > 0 && kink(tangent(i, 1.), tangent(next, 0.)))
+            if (f > 0)
               {
                 piece.end = 1. - f;
                 Piece transition;
@@ -440,9 +423,7 @@ namespace glide
           }
         else if (const int a = mirror_axis(end); a >= 0)
           {
-            Tensor<1, dim> t = tangent(i, 1.), m = t;
-            m[a] = -m[a];
-            if (f > 0 && kink(t, -m))
+            if (f > 0)
               {
                 piece.end = 1. - f;
                 Piece transition;

@@ -264,14 +264,25 @@ TEST(MasterSurface, SmoothingOf2DFacets)
     }
 }
 
-// R1.2: nothing changes on a straight run of facets.
+// R1.2: nothing changes on a straight run of facets: the transitions at
+// its interior nodes lie on the line and have the line's normal.
 TEST(MasterSurface, StraightRunIsNotSmoothed)
 {
-  Fixture<2> s(ball_on_block(2, 0.2, 2, "hard"), "straight.prm");
-  const auto top = master_of<2>(s, "block.top", 0.2);
-  EXPECT_EQ(top->get_pieces().size(), top->get_facets().size());
-  for (const auto &piece : top->get_pieces())
-    EXPECT_EQ(piece.kind, MasterSurface<2>::PieceKind::lagrange);
+  for (const unsigned int degree : {1u, 2u})
+    {
+      Fixture<2> s(ball_on_block(2, 0.2, degree, "hard"),
+                   "straight" + std::to_string(degree) + ".prm");
+      const auto top = master_of<2>(s, "block.top", 0.2);
+      EXPECT_EQ(top->get_pieces().size(), 2 * top->get_facets().size() - 1);
+      for (unsigned int i = 0; i < top->get_pieces().size(); ++i)
+        for (const double t : {0., 0.25, 0.5, 0.75, 1.})
+          {
+            const auto [x, n] = top->evaluate(i, {{t}});
+            EXPECT_NEAR(x[1], 1., 1e-14);
+            EXPECT_NEAR(n[0], 0., 1e-14);
+            EXPECT_NEAR(n[1], 1., 1e-14);
+          }
+    }
 }
 
 // Projection onto known shapes: the flat top of the block, at a node,

@@ -32,8 +32,11 @@ namespace glide
    * curves of R1.1: a cubic Hermite curve from x1(1 - f) to x2(f) with end
    * tangents 2 f x1'(1 - f) and 2 f x2'(f), which is tangent to both facets
    * and is exactly the parabola with control points x1(1-f), node, x2(f)
-   * when the facets are straight. Only nodes where the normal jumps are
-   * smoothed (R1.2); a chain end on a symmetry plane (XSYMM/YSYMM, or the
+   * when the facets are straight. Transitions sit at the facets' end nodes,
+   * never at mid-side nodes; a node between collinear facets gets one too,
+   * but its control points are collinear, so the surface there is exactly
+   * the facets (R1.2), and it stays smooth when the deforming master
+   * develops a kink at that node; a chain end on a symmetry plane (XSYMM/YSYMM, or the
    * axis of an axisymmetric scene) is smoothed against the mirror image of
    * its end facet (R2.1, R2.2). Smoothing never crosses the end of the
    * master surface (R3.1); there the end facet is extended by 5 % of its
