@@ -55,6 +55,10 @@ def run(scene, *sets, name=None, expect_status=0, mpi=False, output=None):
     return rows, log, os.path.join(output, name)
 
 
+def scene_file(name):
+    return os.path.join(ROOT, "parameters", name)
+
+
 def scene(name):
     return os.path.join(HERE, name)
 
@@ -449,6 +453,130 @@ def case_shipped_scenes_run():
         if f.endswith(".prm"):
             rows, _, _ = run(os.path.join(ROOT, "parameters", f), "Output/Write VTU=false")
             check(len(rows) >= 1 and rows[-1]["load_factor"] == 1.0, f"{f} runs to load factor 1")
+
+
+def contact_nodes(out, pair):
+    last = sorted(f for f in os.listdir(out) if f.startswith(f"contact-{pair}-") and f.endswith(".csv"))[-1]
+    with open(os.path.join(out, last)) as f:
+        return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+
+
+def case_hertz_2d_deformable_master():
+    """Issue 3 (deformable master, R1.1, R4.1): Hertz line contact between
+    an elastic cylinder (slave) and an elastic block (master, its faceted
+    top smoothed with f = 0.2), parameters/hertz-2d-elastic.prm. Exact
+    (benchmarks section 1, 1/E* = 2 (1 - nu^2)/E): p0 = 0.0132248 for
+    P = 1e-3. Checks: the block's bottom reaction balances the contact
+    force and the load; the peak nodal pressure is within 3 % of p0 (the
+    finite block and the mesh; measured 1.0 %); no slave node penetrates;
+    every converged step needs at most 10 Newton iterations (the first
+    step, force-driven from a single touching node, may be cut back)."""
+    rows, log, out = run(scene_file("hertz-2d-elastic.prm"), "Output/Write VTU=false")
+    check("block.top" in log, "the log names the deformable master")
+    for r in rows:
+        close(r["reaction_ground_y"], r["contact_hertz_force_y"], 1e-9, f"balance at t={r['load_factor']}")
+        check(r["kinsol_iterations"] <= 10, f"{int(r['kinsol_iterations'])} iterations at t={r['load_factor']}")
+    close(rows[-1]["contact_hertz_force_y"], 1e-3, 1e-9, "contact force = P")
+    check(rows[-1]["contact_hertz_max_penetration"] <= 1e-12, "no penetration")
+    p0h = max(n["CPRESS"] for n in contact_nodes(out, "hertz"))
+    p0 = 2 * 1e-3 / (math.pi * math.sqrt(4 * 1e-3 * 2 * (1 - 0.09) / math.pi))
+    close(p0h, p0, 0.03, "peak pressure against Hertz")
+
+
+def case_inner_corner():
+    """Issue 3 (R3.1, R3.2, P6.3 'inner corner'): parameters/corner.prm. A
+    square pushed into an inner corner made of two master surfaces (one
+    pair each, same slave surface). The slave node at the corner (0, 0) is
+    closed in both pairs and penetrates neither master; each master body's
+    support balances its pair's contact force; at most 5 iterations per
+    step, no cut-back."""
+    rows, _, out = run(scene_file("corner.prm"), "Output/Write VTU=false")
+    for r in rows:
+        check(r["kinsol_iterations"] <= 5, f"{int(r['kinsol_iterations'])} iterations at t={r['load_factor']}")
+        check(r["cut_backs"] == 0, "no cut-back")
+        close(r["reaction_floor_bottom_y"], r["contact_floor_force_y"], 1e-9, "floor balance")
+        close(r["reaction_wall_back_x"], r["contact_wall_force_x"], 1e-9, "wall balance")
+    for pair in ("floor", "wall"):
+        corner = [n for n in contact_nodes(out, pair) if abs(n["X"]) < 1e-12 and abs(n["Y"]) < 1e-12]
+        check(len(corner) == 1 and corner[0]["CSTATUS"] == 1, f"corner node closed in pair {pair}")
+        check(abs(corner[0]["COPEN"]) < 1e-9, f"corner node on the {pair} (gap {corner[0]['COPEN']:.2g})")
+        check(corner[0]["CPRESS"] > 0, f"corner node pushes on the {pair}")
+        check(rows[-1][f"contact_{pair}_max_penetration"] <= 1e-12, f"no penetration of the {pair}")
+
+
+def patch(*sets, name):
+    rows, _, out = run(scene_file("patch-test.prm"), "Output/Write VTU=false", *sets, name=name)
+    nodes = contact_nodes(out, "interface")
+    return rows, [n["CPRESS"] for n in nodes]
+
+
+def case_patch_test_and_hard_cases():
+    """Issue 3, section 6 (patch test, P6.3 hard cases), on
+    parameters/patch-test.prm (exact: uniform pressure 1e4):
+    - non-matching meshes (5 vs 8 cells): node to surface does not pass
+      the patch test; the measured largest relative pressure error is
+      printed and recorded in doc/accuracy-vs-cost.md (6.6 % on
+      2026-11-22); the test asserts it stays below 10 % and that the
+      total force is within 0.1 % of 1e4;
+    - the same with a faceted master (f = 0), error recorded likewise;
+    - slave nodes exactly on master nodes (matching meshes, f = 0):
+      uniform pressure to 1e-6 (solver tolerance);
+    - initial overclosure 0.001: resolved in the first step, total force
+      within 0.1 % of E 0.011 / 1.001;
+    - stiffness ratio 1e6 (lower block E = 1): force within 0.1 % of
+      0.01 / (0.5 / 1 + 0.5 / 1e6);
+    each converging in at most 6 iterations, without cut-back."""
+    def common(rows, force, what):
+        check(rows[-1]["cut_backs"] == 0, f"{what}: no cut-back")
+        check(max(r["kinsol_iterations"] for r in rows) <= 6, f"{what}: at most 6 iterations")
+        close(rows[-1]["contact_interface_force_y"], force, 1e-3, f"{what}: total contact force on the upper block")
+        check(rows[-1]["contact_interface_max_penetration"] <= 1e-12, f"{what}: no penetration")
+    rows, p = patch(name="nonmatching")
+    error = max(abs(x / 1e4 - 1) for x in p)
+    print(f"measured: non-matching patch test, largest relative pressure error {error:.4f}")
+    check(error < 0.10, f"non-matching: error {error:.4f} below 10 %")
+    common(rows, 1e4, "non-matching")
+    rows, p = patch("Contact pair interface/Smoothing fraction=0", name="nonmatching_faceted")
+    error = max(abs(x / 1e4 - 1) for x in p)
+    print(f"measured: non-matching patch test with f = 0, largest relative pressure error {error:.4f}")
+    check(error < 0.10, f"non-matching, f = 0: error {error:.4f} below 10 %")
+    common(rows, 1e4, "non-matching, f = 0")
+    # Smoothing spreads the force of a slave node at a master node over
+    # the neighbouring master nodes (weights f/4), so only the faceted
+    # master (f = 0) reproduces the matching-mesh solution exactly.
+    rows, p = patch("Body upper/Block/Subdivisions=5, 5", "Contact pair interface/Smoothing fraction=0",
+                    name="matching")
+    error = max(abs(x / 1e4 - 1) for x in p)
+    check(error < 1e-6, f"matching meshes, f = 0: uniform pressure (error {error:.2g})")
+    common(rows, 1e4, "matching")
+    rows, p = patch("Body upper/Block/Lower corner=0, 0.499", name="overclosure")
+    common(rows, 1e6 * 0.011 / 1.001, "overclosure")
+    rows, p = patch("Body lower/Material/Young's modulus=1", name="ratio")
+    common(rows, 0.01 / (0.5 + 0.5e-6), "stiffness ratio 1e6")
+
+
+def case_axisymmetric_master_on_the_axis():
+    """Issue 3 (R2.2): parameters/hertz-axisymmetric-elastic.prm (block
+    refined one level less): an elastic sphere as the master, ending on the
+    axis, pressed into an elastic block. Converges without cut-back in at
+    most 6 iterations per step; the block's support balances the contact
+    force; the nodal pressure next to the axis is within 5 % of Hertz's p0
+    for the measured force (1/E* = 2 (1 - nu^2)/E). The pressure at the
+    axis node itself is printed (measured 0.38 p0: a known deviation of
+    this case, documented in doc/accuracy-vs-cost.md)."""
+    rows, _, out = run(scene_file("hertz-axisymmetric-elastic.prm"), "Output/Write VTU=false",
+                       "Body block/Refinement/Local refinements=4")
+    for r in rows:
+        check(r["cut_backs"] == 0, "no cut-back")
+        check(r["kinsol_iterations"] <= 6, f"{int(r['kinsol_iterations'])} iterations at t={r['load_factor']}")
+        close(r["reaction_ground_y"], -r["contact_hertz_force_y"], 1e-9, f"balance at t={r['load_factor']}")
+    F = rows[-1]["reaction_ground_y"]
+    e_star = 1 / (2 * (1 - 0.3 ** 2))
+    a = (3 * F / (4 * e_star)) ** (1 / 3)
+    p0 = 3 * F / (2 * math.pi * a * a)
+    nodes = sorted(contact_nodes(out, "hertz"), key=lambda n: n["X"])
+    print(f"measured: pressure at the axis node {nodes[0]['CPRESS'] / p0:.3f} p0")
+    close(nodes[1]["CPRESS"], p0 * math.sqrt(1 - (nodes[1]["X"] / a) ** 2), 0.05, "pressure next to the axis")
 
 
 def main():

@@ -430,3 +430,55 @@ TEST(MasterSurface, SharedNodesAreAnError)
       EXPECT_NE(m.find("'pair'"), std::string::npos) << m;
     }
 }
+
+// R2.2, R5.1: an axisymmetric sphere as the master, ending on the axis: the
+// slave nodes near the axis project onto the transition between the end
+// facet and its mirror image; the Jacobian must still be the derivative of
+// the residual.
+TEST(MasterSurface, JacobianAtTheAxisMatchesFiniteDifferences)
+{
+  for (const double f : {0., 0.2})
+    {
+      std::ostringstream t;
+      t << "set Analysis type = axisymmetric\nset Bodies = sphere, block\n"
+        << "set Boundary conditions = ground\nset Contact pairs = pair\n"
+        << "subsection Body sphere\n  set Mesh = hertz\n"
+        << "  subsection Round shapes\n    set Center = 0, 0.98\n"
+        << "    set Radius = 1\n  end\n  subsection Refinement\n"
+        << "    set Global refinements = 2\n  end\nend\n"
+        << "subsection Body block\n  subsection Block\n"
+        << "    set Lower corner = 0, -1\n    set Upper corner = 1, 0\n"
+        << "    set Subdivisions = 8, 2\n  end\nend\n"
+        << "subsection Boundary condition ground\n  set Surface = block.bottom\n"
+        << "  set Type = fixed\nend\n"
+        << "subsection Contact pair pair\n  set Slave = block.top\n"
+        << "  set Master = sphere.curved\n  set Smoothing fraction = " << f
+        << "\nend\n";
+      Fixture<2>   s(t.str(), "axis" + std::to_string(int(10 * f)) + ".prm");
+      std::mt19937 gen(5);
+      std::uniform_real_distribution<double> small(-0.005, 0.005),
+        force(0., 0.02);
+      VectorType U(s.e.locally_owned(), MPI_COMM_WORLD), v(U);
+      for (const auto i : s.e.displacement_owned())
+        {
+          U[i] = small(gen);
+          v[i] = small(gen);
+        }
+      for (const auto i : s.contact.owned_multipliers())
+        {
+          U[i] = force(gen);
+          v[i] = force(gen);
+        }
+      U.compress(VectorOperation::insert);
+      v.compress(VectorOperation::insert);
+      s.e.update_constraints().distribute(U);
+      s.e.update_constraints().distribute(v);
+      ASSERT_FALSE(s.contact.needs_new_pattern(U));
+      const auto [err, ref] =
+        glide_test::contact_jacobian_error(s.e, s.contact, U, v, 1e-7);
+      EXPECT_GT(ref, 0.);
+      EXPECT_LT(err, 1e-6 * ref) << "f = " << f;
+      const auto stats = s.contact.statistics(U);
+      EXPECT_GT(std::stoi(stats[0].second), 0) << "some nodes closed";
+    }
+}

@@ -36,9 +36,9 @@ namespace glide
    * never at mid-side nodes; a node between collinear facets gets one too,
    * but its control points are collinear, so the surface there is exactly
    * the facets (R1.2), and it stays smooth when the deforming master
-   * develops a kink at that node; a chain end on a symmetry plane (XSYMM/YSYMM, or the
-   * axis of an axisymmetric scene) is smoothed against the mirror image of
-   * its end facet (R2.1, R2.2). Smoothing never crosses the end of the
+   * develops a kink at that node; a chain end on a symmetry plane (XSYMM/YSYMM,
+   * or the axis of an axisymmetric scene) is smoothed against the mirror image
+   * of its end facet (R2.1, R2.2). Smoothing never crosses the end of the
    * master surface (R3.1); there the end facet is extended by 5 % of its
    * parameter range, and a slave point beyond that is not in contact.
    *
