@@ -515,7 +515,7 @@ def case_patch_test_and_hard_cases():
     parameters/patch-test.prm (exact: uniform pressure 1e4):
     - non-matching meshes (5 vs 8 cells): node to surface does not pass
       the patch test; the measured largest relative pressure error is
-      printed and recorded in doc/accuracy-vs-cost.md (6.6 % on
+      printed and recorded in doc/theory/node-to-surface.md (6.6 % on
       2026-11-22); the test asserts it stays below 10 % and that the
       total force is within 0.1 % of 1e4;
     - the same with a faceted master (f = 0), error recorded likewise;
@@ -563,7 +563,7 @@ def case_axisymmetric_master_on_the_axis():
     force; the nodal pressure next to the axis is within 5 % of Hertz's p0
     for the measured force (1/E* = 2 (1 - nu^2)/E). The pressure at the
     axis node itself is printed (measured 0.38 p0: a known deviation of
-    this case, documented in doc/accuracy-vs-cost.md)."""
+    this case, documented in doc/theory/node-to-surface.md)."""
     rows, _, out = run(scene_file("hertz-axisymmetric-elastic.prm"), "Output/Write VTU=false",
                        "Body block/Refinement/Local refinements=4")
     for r in rows:
