@@ -57,7 +57,15 @@ namespace glide
     Contact<dim> contact(scene, elasticity, comm);
     {
       TimerOutput::Scope t(timer, "setup");
-      contact.setup(elasticity.get_dof_handler().n_dofs());
+      try
+        {
+          contact.setup(elasticity.get_dof_handler().n_dofs());
+        }
+      catch (...)
+        {
+          t.stop(); // an input error: leave the timer section quietly
+          throw;
+        }
     }
     elasticity.setup_system(contact.owned_multipliers(),
                             [&](DynamicSparsityPattern &dsp) {
@@ -141,6 +149,7 @@ namespace glide
           // A slave node slid onto master facets outside the pattern.
           pcout << "    contact: sparsity pattern rebuilt (sliding)"
                 << std::endl;
+          linear_solver.clear(); // it refers to the old matrix
           elasticity.setup_system(contact.owned_multipliers(),
                                   [&](DynamicSparsityPattern &dsp) {
                                     contact.add_sparsity(dsp);

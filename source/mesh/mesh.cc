@@ -289,6 +289,32 @@ namespace glide
             names[11] = "top";
           }
       }
+    else if (m.type == "half ring")
+      {
+        if constexpr (dim == 2)
+          {
+            GridGenerator::half_hyper_shell(tria,
+                                            Point<2>(),
+                                            m.inner_radius,
+                                            m.radius);
+            GridTools::rotate(-numbers::PI / 2, tria);
+            GridTools::shift(Tensor<1, dim>(c), tria);
+            label_round_boundary<dim>(tria,
+                                      c,
+                                      {{m.inner_radius, 0}, {m.radius, 1}},
+                                      {{1, 2}},
+                                      m.length,
+                                      true);
+            tria.set_all_manifold_ids(0);
+            tria.set_manifold(0, SphericalManifold<2>(c));
+            names[0] = "inner";
+            names[1] = "outer";
+            names[2] = "ends";
+          }
+        else
+          throw InputError("Body '" + body_name +
+                           "': 'Mesh = half ring' is available in 2D only.");
+      }
     else if (m.type == "ring")
       {
         if constexpr (dim == 2)

@@ -33,6 +33,16 @@ namespace glide
     choose(const unsigned int                    dim,
            const dealii::types::global_dof_index n_dofs);
 
+    /// Release the factorization or preconditioner, which refer to the
+    /// matrix they were built from: call this before that matrix is
+    /// re-initialized (a new sparsity pattern).
+    void
+    clear()
+    {
+      direct.reset();
+      amg.reset();
+    }
+
     /// Factorize (direct) or build the AMG hierarchy for @p matrix.
     void
     initialize(const dealii::TrilinosWrappers::SparseMatrix &matrix,
