@@ -7,9 +7,9 @@ What it measures today: Hertz line contact (Case A) with node-to-surface
 contact against a rigid flat, element degree 1 and 2, five meshes each:
 DoFs, a_h/a, p0_h/p0, relative L2 pressure error, Newton iterations per
 step, wall time and peak memory, all read from the runs' own statistics;
-Hertz between elastic bodies and 2D ironing with faceted and smoothed
-deformable masters (ripple, iterations, cut-backs, time, contact share),
-and ironing with the symmetrized Jacobian.
+Hertz between elastic bodies with faceted and smoothed deformable masters
+(iterations, cut-backs, time, contact share); with --ironing also 2D
+ironing (ripple; work in progress, the scene does not finish yet).
 
 Usage: python3 study/accuracy_vs_cost.py --glide build/glide
 (needs python3-matplotlib for the plots)."""
@@ -31,7 +31,10 @@ ROOT = os.path.dirname(HERE)
 def run_scene(glide, scene, out, name, *sets):
     """Run one scene; return its statistics rows and timings (empty rows if
     it did not finish) and the last load factor reached."""
-    cmd = [glide, os.path.join(ROOT, "parameters", scene), "--set", f"Output/Directory={out}",
+    path = os.path.join(ROOT, "parameters", scene)
+    if not os.path.exists(path):
+        path = os.path.join(HERE, "scenes", scene)
+    cmd = [glide, path, "--set", f"Output/Directory={out}",
            "--set", f"Scene name={name}", "--set", "Output/Write VTU=false"]
     for s in sets:
         cmd += ["--set", s]
@@ -54,7 +57,7 @@ def contact_share(t):
     return contact / total if total > 0 else float("nan")
 
 
-def deformable_studies(glide, out):
+def deformable_studies(glide, out, ironing):
     """Hertz 2D between elastic bodies and the 2D ironing problem, each
     with a faceted (f = 0) and a smoothed (f = 0.2) deformable master, and
     ironing with the symmetrized Jacobian."""
@@ -77,7 +80,7 @@ def deformable_studies(glide, out):
                          cut_backs=int(rows[-1]["cut_backs"]), time=float(r["timings"]["total_wall_time"]),
                          memory=float(r["timings"]["peak_memory_mib"]), contact_share=contact_share(r["timings"]))
         results[f"hertz f={f}"] = entry
-    for f, lin in (("0", "unsymmetric"), ("0.2", "unsymmetric"), ("0.2", "symmetrized")):
+    for f, lin in (("0", "unsymmetric"), ("0.2", "unsymmetric"), ("0.2", "symmetrized")) if ironing else ():
         r = run_scene(glide, "ironing-2d.prm", out, f"ironing-f{f}-{lin}",
                       f"Contact pair ironing/Smoothing fraction={f}", f"Contact pair ironing/Linearization={lin}",
                       "Load stepping/Maximum cut-backs=10")
@@ -117,6 +120,13 @@ def deformable_lines(results):
                          f"{e['cut_backs']} | {e['time']:.1f} | {e['memory']:.0f} | {100 * e['contact_share']:.0f} % |")
         else:
             lines.append(f"| {f} | did not finish: {e['error']} | | | | | | |")
+    if not any(k.startswith("ironing") for k in results):
+        lines += ["", "## Ironing (2D, deformable faceted master)", "",
+                  "Not measured yet. `study/scenes/ironing-2d.prm` (reference section 4) does not finish "
+                  "yet: on 2026-11-22 it reached load factor 0.345 (the start of sliding) in 15 minutes "
+                  "after 244 cut-backs (inverted slab elements under the die while pressing, active-set "
+                  "cycling at the die's leading edge). Run with `--ironing` to include it.", ""]
+        return lines
     lines += ["", "## Ironing (2D, deformable faceted master)", "",
               "`parameters/ironing-2d.prm` (reference section 4): die pressed 1.4 into the slab "
               "(load factor 0 to 0.26), then slid 4.0 (0.26 to 1), 100 nominal steps, geometrically "
@@ -148,6 +158,8 @@ def main():
     ap.add_argument("--glide", required=True)
     ap.add_argument("--doc", default=os.path.join(ROOT, "doc"))
     ap.add_argument("--reuse", help="directory of an earlier run: rewrite the report from its tables")
+    ap.add_argument("--ironing", action="store_true",
+                    help="also run study/scenes/ironing-2d.prm (work in progress; hours)")
     a = ap.parse_args()
     out = a.reuse or tempfile.mkdtemp(prefix="glide-accuracy-")
     tables = {}
@@ -174,7 +186,7 @@ def main():
         with open(summary) as f:
             deformable = json.load(f)
     else:
-        deformable = deformable_studies(os.path.abspath(a.glide), out)
+        deformable = deformable_studies(os.path.abspath(a.glide), out, a.ironing)
         with open(summary, "w") as f:
             json.dump(deformable, f, indent=1)
 
@@ -243,9 +255,9 @@ def main():
         "deformable master the whole contact part (search, projection, assembly) takes the "
         "'contact share' of the run in the tables above (an upper bound for the search).",
         "- *Contact solve at most (iterations + 1) linear elastic solves*: not measured yet.",
-        "- Unsymmetric against symmetrized Jacobian: measured on 2D ironing above; in 2D the "
-        "smoothed master's force direction is the gap gradient, so the two differ only through "
-        "faceted (vertex) contact; a 3D measurement (blended normals) is not in this study yet.",
+        "- Unsymmetric against symmetrized Jacobian: not measured yet (the option exists; in 2D "
+        "the smoothed master's force direction is the gap gradient, so the two differ only "
+        "through faceted vertex contact; the measurement needs the 3D or ironing scenes).",
         "",
     ]
     with open(os.path.join(a.doc, "accuracy-vs-cost.md"), "w") as f:
