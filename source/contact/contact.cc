@@ -166,7 +166,8 @@ namespace glide
                           "surfaces of different bodies, or split the "
                           "surface).");
               }
-            pair.previous_projection.resize(pair.nodes.size());
+            for (const auto &node : pair.nodes)
+              pair.previous_projection.push_back(pair.surface->project(node.X));
             pair.coupled.resize(pair.nodes.size());
           }
         for (const auto &node : pair.nodes)

@@ -763,7 +763,6 @@ namespace glide
                                const std::array<T, dim - 1> &xi,
                                const std::array<T, dim>     &xs,
                                const Positions              &pos,
-                               const bool                    vertex,
                                std::array<T, dim - 1>       &R) const
   {
     std::array<T, dim>                      y, n;
@@ -772,12 +771,9 @@ namespace glide
     std::array<T, dim> r;
     for (unsigned int d = 0; d < dim; ++d)
       r[d] = xs[d] - y[d];
-    if (!vertex)
-      {
-        const T rn = dot(r, n);
-        for (unsigned int d = 0; d < dim; ++d)
-          r[d] -= rn * n[d];
-      }
+    const T rn = dot(r, n);
+    for (unsigned int d = 0; d < dim; ++d)
+      r[d] -= rn * n[d];
     for (unsigned int b = 0; b < dim - 1; ++b)
       R[b] = dot(r, a[b]);
   }
@@ -832,7 +828,7 @@ namespace glide
         std::array<Fad, dim - 1> xf, R;
         for (unsigned int b = 0; b < dim - 1; ++b)
           xf[b] = Fad(dim - 1, b, xi[b]);
-        residual<Fad>(piece, xf, s, pos, false, R);
+        residual<Fad>(piece, xf, s, pos, R);
         std::array<std::array<double, dim - 1>, dim - 1> J;
         std::array<double, dim - 1>                      r, step;
         for (unsigned int b = 0; b < dim - 1; ++b)
@@ -846,11 +842,18 @@ namespace glide
         fixed.fill(false);
         if (!newton_step(J, r, fixed, step))
           return result;
-        for (unsigned int b = 0; b < dim - 1; ++b)
-          fixed[b] = (xi[b] <= piece.lower[b] && step[b] < 0) ||
-                     (xi[b] >= piece.upper[b] && step[b] > 0);
-        if (!newton_step(J, r, fixed, step))
-          return result;
+        for (unsigned int pass = 0; pass < dim - 1; ++pass)
+          {
+            bool more = false;
+            for (unsigned int b = 0; b < dim - 1; ++b)
+              if (!fixed[b] && ((xi[b] <= piece.lower[b] && step[b] < 0) ||
+                                (xi[b] >= piece.upper[b] && step[b] > 0)))
+                fixed[b] = more = true;
+            if (!more)
+              break;
+            if (!newton_step(J, r, fixed, step))
+              return result;
+          }
         double change = 0;
         for (unsigned int b = 0; b < dim - 1; ++b)
           {
@@ -861,27 +864,31 @@ namespace glide
             change = std::max(change, std::abs(v - xi[b]));
             xi[b]  = v;
           }
-        converged = change < 1e-13;
+        // The parameters live in [0, 1]: 1e-10 is far below any geometric
+        // tolerance, and Newton converges quadratically past it.
+        converged = change < 1e-10;
       }
     if (!converged)
       return result;
-    result.found   = true;
-    result.xi      = xi;
-    result.clamped = fixed;
-    for (const bool c : fixed)
-      result.vertex = result.vertex || c;
+    result.found      = true;
+    result.xi         = xi;
+    result.clamped    = fixed;
     const auto [y, n] = evaluate(i, xi);
     result.point      = y;
     result.normal     = n;
     result.gap        = (xs - y) * n;
+    // Contact with an edge or node only at a distance from it: a slave
+    // point on the end point keeps the piece's normal.
+    for (const bool c : fixed)
+      result.vertex = result.vertex || c;
+    result.vertex = result.vertex && (xs - y).norm() > 1e-10 * max_size;
     if (result.vertex)
       {
         // The closest point of an edge or node: contact along r.
         const double distance = (xs - y).norm();
         const double sign     = result.gap >= 0 ? 1. : -1.;
         result.gap            = sign * distance;
-        if (distance > 0)
-          result.normal = sign * (xs - y) / distance;
+        result.normal         = sign * (xs - y) / distance;
       }
     return result;
   }
@@ -974,7 +981,10 @@ namespace glide
       {
         bool band = false;
         for (unsigned int b = 0; b < dim - 1; ++b)
-          band = band || p.xi[b] < fraction || p.xi[b] > 1. - fraction;
+          // (with a margin: the chord steps of linearize() move xi by
+          // round-off, and the band decides which nodes enter)
+          band =
+            band || p.xi[b] < fraction + 1e-8 || p.xi[b] > 1. - fraction - 1e-8;
         if (band)
           for (const auto k : patch(piece.facet))
             result.push_back(k);
@@ -1055,7 +1065,7 @@ namespace glide
       std::array<Fad, dim - 1> xf, R;
       for (unsigned int b = 0; b < dim - 1; ++b)
         xf[b] = Fad(dim - 1, b, p.xi[b]);
-      residual<Fad>(piece, xf, sp, plain_pos, p.vertex, R);
+      residual<Fad>(piece, xf, sp, plain_pos, R);
       for (unsigned int b = 0; b < dim - 1; ++b)
         for (unsigned int c = 0; c < dim - 1; ++c)
           J[b][c] = R[b].dx(c);
@@ -1069,7 +1079,7 @@ namespace glide
     for (unsigned int step = 0; step < 2; ++step)
       {
         std::array<Fad, dim - 1> R;
-        residual<Fad>(piece, xi, s, pos, p.vertex, R);
+        residual<Fad>(piece, xi, s, pos, R);
         std::array<Fad, dim - 1> d;
         if constexpr (dim == 2)
           {

@@ -260,7 +260,9 @@ TEST(MasterSurface, SmoothingOf2DFacets)
       // (Straight facets: all turning happens inside the transitions, each
       // spread over 40 samples. Quadratic facets turn everywhere.)
       if (degree == 1)
-        EXPECT_LT(max_turn, 0.2 * max_jump_faceted);
+        {
+          EXPECT_LT(max_turn, 0.2 * max_jump_faceted);
+        }
     }
 }
 

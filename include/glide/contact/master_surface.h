@@ -228,7 +228,6 @@ namespace glide
              const std::array<T, dim - 1> &xi,
              const std::array<T, dim>     &xs,
              const Positions              &pos,
-             const bool                    vertex,
              std::array<T, dim - 1>       &R) const;
 
     Projection
