@@ -297,6 +297,10 @@ namespace glide
     pieces.clear();
     if (facets.empty())
       return;
+    on_symmetry_plane.resize(nodes.size());
+    for (unsigned int k = 0; k < nodes.size(); ++k)
+      for (unsigned int c = 0; c < dim; ++c)
+        on_symmetry_plane[k][c] = symmetric[c].count(nodes[k].dofs[c]) > 0;
     if (dim == 2)
       build_pieces_2d(symmetric, axisymmetric, path);
     else
@@ -700,7 +704,29 @@ namespace glide
       auto      ne = facet_normal<T>(facet, m, pos);
       const int g  = facets[facet].neighbours[e];
       if (g < 0)
-        return ne;
+        {
+          // An edge on a symmetry plane: the normal of the mirrored
+          // continuation, i.e. the facet's normal projected into the plane.
+          const unsigned int q                = polynomial_degree;
+          const unsigned int corners_of[4][2] = {{0, 2},
+                                                 {1, 3},
+                                                 {0, 1},
+                                                 {2, 3}};
+          auto               node_at = [&](const unsigned int v) {
+            return facets[facet].nodes[(v % 2) * q + (q + 1) * (v / 2) * q];
+          };
+          bool changed = false;
+          for (unsigned int a = 0; a < dim; ++a)
+            if (on_symmetry_plane[node_at(corners_of[e][0])][a] &&
+                on_symmetry_plane[node_at(corners_of[e][1])][a])
+              {
+                ne[a]   = T(0.);
+                changed = true;
+              }
+          if (changed)
+            normalize(ne);
+          return ne;
+        }
       // The neighbour's normal at the midpoint of its edge towards us.
       for (unsigned int e2 = 0; e2 < 4; ++e2)
         if (facets[g].neighbours[e2] == int(facet))
@@ -728,6 +754,13 @@ namespace glide
           for (unsigned int d = 0; d < dim; ++d)
             nc[d] += ng[d];
         }
+      // A node on a symmetry plane: the normal lies in the plane.
+      const unsigned int q = polynomial_degree;
+      const unsigned int node =
+        facets[facet].nodes[(v % 2) * q + (q + 1) * (v / 2) * q];
+      for (unsigned int a = 0; a < dim; ++a)
+        if (on_symmetry_plane[node][a])
+          nc[a] = T(0.);
       normalize(nc);
       return nc;
     };

@@ -98,16 +98,30 @@ namespace
   check_deformable_jacobian(const double       fraction,
                             const unsigned int degree,
                             const std::string &enforcement,
-                            const std::string &linearization = "unsymmetric")
+                            const std::string &linearization = "unsymmetric",
+                            const bool         symmetry      = false)
   {
     const std::string tag = std::to_string(dim) +
                             "D f=" + std::to_string(fraction) + " Q" +
-                            std::to_string(degree) + " " + enforcement;
-    Fixture<dim> s(
-      ball_on_block(dim, fraction, degree, enforcement, linearization),
-      "deformable_" + std::to_string(dim) +
-        std::to_string(int(100 * fraction)) + std::to_string(degree) +
-        enforcement + ".prm");
+                            std::to_string(degree) + " " + enforcement + " " +
+                            linearization + (symmetry ? " symmetry" : "");
+    // With symmetry: XSYMM/ZSYMM on the ball's cut planes (3D), so that
+    // the blended normals at its boundary edges lie in those planes.
+    std::string text = ball_on_block(dim,
+                                     fraction,
+                                     degree,
+                                     enforcement,
+                                     linearization,
+                                     symmetry ? ", sx, sz" : "");
+    if (symmetry)
+      text += "subsection Boundary condition sx\n  set Surface = ball.x0\n"
+              "  set Type = XSYMM\nend\nsubsection Boundary condition sz\n"
+              "  set Surface = ball.z0\n  set Type = ZSYMM\nend\n";
+    Fixture<dim>                           s(text,
+                   "deformable_" + std::to_string(dim) +
+                     std::to_string(int(100 * fraction)) +
+                     std::to_string(degree) + enforcement + linearization +
+                     (symmetry ? "sym" : "") + ".prm");
     std::mt19937                           gen(11);
     std::uniform_real_distribution<double> small(-0.01, 0.01), force(0., 0.02);
     VectorType U(s.e.locally_owned(), MPI_COMM_WORLD), v(U);
@@ -162,6 +176,10 @@ TEST(MasterSurface, JacobianMatchesFiniteDifferences3D)
     for (const unsigned int degree : {1u, 2u})
       check_deformable_jacobian<3>(f, degree, "hard");
   check_deformable_jacobian<3>(0.2, 1, "penalty");
+  // Blended normals projected into the symmetry planes at the boundary
+  // edges and corners.
+  check_deformable_jacobian<3>(0.2, 1, "hard", "unsymmetric", true);
+  check_deformable_jacobian<3>(0.2, 2, "hard", "unsymmetric", true);
 }
 
 // R1.1, R1.2, R1.3 (f = 0), R3.1: a faceted circle (the ball's curved
@@ -482,5 +500,43 @@ TEST(MasterSurface, JacobianAtTheAxisMatchesFiniteDifferences)
       EXPECT_LT(err, 1e-6 * ref) << "f = " << f;
       const auto stats = s.contact.statistics(U);
       EXPECT_GT(std::stoi(stats[0].second), 0) << "some nodes closed";
+    }
+}
+
+// R1.4 with symmetry planes (3D counterpart of R2.1): on the edges of the
+// sphere octant that lie on its XSYMM/ZSYMM cut planes, the blended normal
+// lies in the plane; without the conditions it does not.
+TEST(MasterSurface, BlendedNormalLiesInSymmetryPlanes)
+{
+  for (const bool symmetry : {false, true})
+    {
+      std::string text =
+        ball_on_block(3, 0.2, 1, "hard", "unsymmetric", symmetry ? ", sx" : "");
+      if (symmetry)
+        text += "subsection Boundary condition sx\n  set Surface = ball.x0\n"
+                "  set Type = XSYMM\nend\n";
+      Fixture<3>   s(text, symmetry ? "plane_sym.prm" : "plane_nosym.prm");
+      const auto   master                 = master_of<3>(s, "ball.curved", 0.2);
+      double       largest_nx             = 0;
+      unsigned int n_edges                = 0;
+      const std::array<double, 2> mids[4] = {{{0., 0.5}},
+                                             {{1., 0.5}},
+                                             {{0.5, 0.}},
+                                             {{0.5, 1.}}};
+      for (unsigned int f = 0; f < master->get_facets().size(); ++f)
+        for (unsigned int e = 0; e < 4; ++e)
+          if (master->get_facets()[f].neighbours[e] < 0)
+            {
+              const auto [x, n] = master->evaluate(f, mids[e]);
+              if (std::abs(x[0] - 0.05) > 1e-12)
+                continue; // not on the plane x = 0.05
+              ++n_edges;
+              largest_nx = std::max(largest_nx, std::abs(n[0]));
+            }
+      EXPECT_GT(n_edges, 0u);
+      if (symmetry)
+        EXPECT_LT(largest_nx, 1e-14);
+      else
+        EXPECT_GT(largest_nx, 1e-3);
     }
 }

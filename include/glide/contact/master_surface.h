@@ -47,7 +47,9 @@ namespace glide
    * facet's parameters) it is the facet's own normal, and towards the edges
    * and corners it blends, with the C1 step 3s^2 - 2s^3, into the edge
    * normal (mean of the two facets' normals at the edge midpoint) and the
-   * corner normal (mean of the normals of all facets at the node).
+   * corner normal (mean of the normals of all facets at the node). On a
+   * symmetry plane (XSYMM/YSYMM/ZSYMM at the nodes) edge and corner normals
+   * are projected into the plane, as the mirrored surface would give.
    *
    * Projection: the point x(xi) whose normal n(xi) passes through the
    * slave point, (r - (r.n) n).a_alpha = 0 with r = x_s - x(xi) and a_alpha
@@ -245,10 +247,13 @@ namespace glide
     /// all facets at that node.
     std::vector<
       std::array<std::vector<std::pair<unsigned int, unsigned int>>, 4>>
-                 corners;
-    double       fraction;
-    double       max_size          = 0.;
-    unsigned int polynomial_degree = 1;
+      corners;
+    /// Per node: does it carry XSYMM/YSYMM/ZSYMM (component a fixed on a
+    /// symmetry plane)? In 3D the blended normal there lies in the plane.
+    std::vector<std::array<bool, dim>> on_symmetry_plane;
+    double                             fraction;
+    double                             max_size          = 0.;
+    unsigned int                       polynomial_degree = 1;
     using Leaf = std::pair<dealii::BoundingBox<dim>, unsigned int>;
     dealii::RTree<Leaf> tree;
   };
