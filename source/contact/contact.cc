@@ -17,6 +17,41 @@ namespace glide
   using namespace dealii;
 
   template <int dim>
+  std::array<Tensor<1, dim>, dim - 1>
+  contact_tangents(const Tensor<1, dim> &n)
+  {
+    std::array<Tensor<1, dim>, dim - 1> t;
+    if constexpr (dim == 2)
+      {
+        t[0][0] = -n[1];
+        t[0][1] = n[0];
+      }
+    else
+      {
+        // The global x axis projected onto the tangent plane; the z axis if
+        // x is within 0.1 degrees of the normal.
+        Tensor<1, dim> e;
+        e[0] = 1.;
+        if (std::abs(n[0]) > std::cos(0.1 * numbers::PI / 180.))
+          {
+            e[0] = 0.;
+            e[2] = 1.;
+          }
+        t[0]           = e - (e * n) * n;
+        const double l = t[0].norm();
+        if (l > 0)
+          t[0] /= l;
+        t[1] = cross_product_3d(n, t[0]);
+      }
+    return t;
+  }
+
+  template std::array<Tensor<1, 2>, 1>
+  contact_tangents<2>(const Tensor<1, 2> &);
+  template std::array<Tensor<1, 3>, 2>
+  contact_tangents<3>(const Tensor<1, 3> &);
+
+  template <int dim>
   Contact<dim>::Contact(const Scene           &scene,
                         const Elasticity<dim> &elasticity,
                         MPI_Comm               comm)
@@ -628,8 +663,8 @@ namespace glide
                             const bool         vtu)
   {
     // Per node: X (dim), x (dim), COPEN, force, CPRESS, CSTATUS, CSLIP,
-    // normal (dim).
-    const unsigned int n_values = 3 * dim + 5;
+    // normal (dim), local tangent directions ((dim - 1) x dim).
+    const unsigned int n_values = 3 * dim + 5 + (dim - 1) * dim;
     move_surfaces(U);
     for (auto &pair : pairs)
       {
@@ -651,6 +686,9 @@ namespace glide
             local.push_back(pair.slip[i]);
             for (unsigned int d = 0; d < dim; ++d)
               local.push_back(s.normal[d]);
+            for (const auto &t : contact_tangents<dim>(s.normal))
+              for (unsigned int d = 0; d < dim; ++d)
+                local.push_back(t[d]);
           }
         const auto all = Utilities::MPI::gather(comm, local, 0);
         if (Utilities::MPI::this_mpi_process(comm) != 0)
@@ -674,8 +712,8 @@ namespace glide
           for (const auto &values : all)
             for (unsigned int k = 0; k + n_values <= values.size();
                  k += n_values)
-              for (unsigned int j = 0; j < n_values - dim; ++j)
-                out << values[k + j] << (j + 1 < n_values - dim ? "," : "\n");
+              for (unsigned int j = 0; j < 2 * dim + 5; ++j)
+                out << values[k + j] << (j + 1 < 2 * dim + 5 ? "," : "\n");
         }
         std::rename((stem + "-" + number + ".csv.tmp").c_str(),
                     (stem + "-" + number + ".csv").c_str());
@@ -691,7 +729,7 @@ namespace glide
               DataOutBase::Patch<0, dim> patch;
               for (unsigned int d = 0; d < dim; ++d)
                 patch.vertices[0][d] = values[k + d];
-              patch.data.reinit(5 + 2 * dim, 1);
+              patch.data.reinit(5 + 2 * dim + (dim - 1) * dim, 1);
               for (unsigned int j = 0; j < 5; ++j)
                 patch.data(j, 0) = values[k + 2 * dim + j];
               for (unsigned int d = 0; d < dim; ++d)
@@ -700,6 +738,8 @@ namespace glide
                   patch.data(5 + dim + d, 0) =
                     values[k + dim + d] - values[k + d];
                 }
+              for (unsigned int j = 0; j < (dim - 1) * dim; ++j)
+                patch.data(5 + 2 * dim + j, 0) = values[k + 3 * dim + 5 + j];
               patch.patch_index = patches.size();
               patches.push_back(patch);
             }
@@ -709,19 +749,28 @@ namespace glide
           names.push_back("contact_normal");
         for (unsigned int d = 0; d < dim; ++d)
           names.push_back("displacement");
+        for (unsigned int a = 0; a < dim - 1; ++a)
+          for (unsigned int d = 0; d < dim; ++d)
+            names.push_back("tangent" + std::to_string(a + 1));
         std::vector<
           std::tuple<unsigned int,
                      unsigned int,
                      std::string,
                      DataComponentInterpretation::DataComponentInterpretation>>
-                          vectors{{5,
-                                   5 + dim - 1,
-                                   "contact_normal",
-                                   DataComponentInterpretation::component_is_part_of_vector},
+          vectors{{5,
+                   5 + dim - 1,
+                   "contact_normal",
+                   DataComponentInterpretation::component_is_part_of_vector},
                   {5 + dim,
-                                   5 + 2 * dim - 1,
-                                   "displacement",
-                                   DataComponentInterpretation::component_is_part_of_vector}};
+                   5 + 2 * dim - 1,
+                   "displacement",
+                   DataComponentInterpretation::component_is_part_of_vector}};
+        for (unsigned int a = 0; a < dim - 1; ++a)
+          vectors.emplace_back(
+            5 + 2 * dim + a * dim,
+            5 + 2 * dim + a * dim + dim - 1,
+            "tangent" + std::to_string(a + 1),
+            DataComponentInterpretation::component_is_part_of_vector);
         const std::string file =
           "contact-" + pair.parameters->name + "-" + number + ".vtu";
         {

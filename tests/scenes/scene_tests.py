@@ -350,8 +350,11 @@ def case_contact_slip():
     grid = r.GetOutput()
     check(grid.GetNumberOfPoints() == 5, f"{grid.GetNumberOfPoints()} contact points")
     pd = grid.GetPointData()
-    for field in ("CPRESS", "COPEN", "CSTATUS", "CSLIP", "contact_normal", "displacement"):
+    for field in ("CPRESS", "COPEN", "CSTATUS", "CSLIP", "contact_normal", "displacement", "tangent1"):
         check(pd.GetArray(field) is not None, f"contact field {field}")
+    # R13.1: in 2D t1 = e_z x n; the plane's normal is (0, 1), so t1 = (-1, 0).
+    t1 = vtk_to_numpy(pd.GetArray("tangent1"))
+    check(abs(t1[:, 0] + 1).max() < 1e-12 and abs(t1[:, 1]).max() < 1e-12, "tangent1 = e_z x n = (-1, 0)")
     check(abs(vtk_to_numpy(pd.GetArray("CSLIP")) - 0.3).max() < 1e-6, "CSLIP in the VTU")
 
 

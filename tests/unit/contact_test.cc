@@ -305,3 +305,32 @@ TEST(Contact, ActiveSetCyclingIsDetectedAndNamesTheNodes)
   contact.begin_solve();
   EXPECT_NO_THROW(contact.assemble(U, nullptr, &J));
 }
+
+// R13.1: local tangent directions by the documented convention, an
+// orthonormal frame with the normal.
+TEST(Contact, LocalTangentDirections)
+{
+  Tensor<1, 2> n2;
+  n2[0]         = 0.6;
+  n2[1]         = 0.8;
+  const auto t2 = contact_tangents<2>(n2);
+  EXPECT_NEAR(t2[0][0], -0.8, 1e-15);
+  EXPECT_NEAR(t2[0][1], 0.6, 1e-15);
+  for (const auto &n : {Tensor<1, 3>({0., 1., 0.}),
+                        Tensor<1, 3>({0.48, 0.6, 0.64}),
+                        Tensor<1, 3>({1., 0., 0.})})
+    {
+      const auto t = contact_tangents<3>(n);
+      EXPECT_NEAR(t[0] * n, 0., 1e-15);
+      EXPECT_NEAR(t[1] * n, 0., 1e-15);
+      EXPECT_NEAR(t[0] * t[1], 0., 1e-15);
+      EXPECT_NEAR(t[0].norm(), 1., 1e-15);
+      EXPECT_NEAR(t[1].norm(), 1., 1e-15);
+      // Right-handed: t1 x t2 = n.
+      EXPECT_NEAR((cross_product_3d(t[0], t[1]) - n).norm(), 0., 1e-15);
+      if (n[0] < 0.5)
+        EXPECT_GT(t[0][0], 0.) << "t1 follows the global x axis";
+      else
+        EXPECT_NEAR(t[0][2], 1., 1e-15) << "x along n: t1 follows z";
+    }
+}

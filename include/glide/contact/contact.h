@@ -15,6 +15,17 @@
 namespace glide
 {
   /**
+   * Local tangent directions at a contact point with normal @p n (R13.1),
+   * by a fixed convention: in 2D t1 = e_z x n (the master's direction of
+   * increasing parameter); in 3D t1 is the global x axis projected onto the
+   * tangent plane (the z axis if x is within 0.1 degrees of n), t2 = n x
+   * t1. They follow the current normal, so they rotate with the surface.
+   */
+  template <int dim>
+  std::array<dealii::Tensor<1, dim>, dim - 1>
+  contact_tangents(const dealii::Tensor<1, dim> &n);
+
+  /**
    * The contact part (DESIGN.md, "Contact formulation"): every contact pair
    * of the scene, node-to-surface, finite sliding, against analytical rigid
    * masters, with hard or penalty enforcement (P2.1, P2.3, P1.4). It
