@@ -59,7 +59,18 @@ def main():
     ap.add_argument("--degree", type=int, default=1)
     ap.add_argument("--output", default="study-output")
     ap.add_argument("--table", help="write the table (CSV) here")
+    ap.add_argument("--elastic", action="store_true",
+                    help="the scene is hertz-2d-elastic.prm: elastic block as the master (1/E* = 2 (1 - nu^2)/E); "
+                         "the block is refined with the cylinder (two levels fewer)")
+    ap.add_argument("--smoothing", help="override the pair's 'Smoothing fraction'")
+    ap.add_argument("--keep-going", action="store_true",
+                    help="record a level that fails (as 'failed') instead of stopping")
     a = ap.parse_args()
+    global E_STAR, A, P0
+    if a.elastic:
+        E_STAR = 1.0 / (2 * (1 - 0.3 ** 2))
+        A = math.sqrt(4 * P * R / (math.pi * E_STAR))
+        P0 = 2 * P / (math.pi * A)
 
     rows = []
     for level in [int(x) for x in a.levels.split(",")]:
@@ -68,7 +79,15 @@ def main():
                "--set", f"Body cylinder/Refinement/Local refinements={level}",
 
                "--set", f"Discretization/Element degree={a.degree}", "--set", "Output/Write VTU=false"]
+        if a.elastic:
+            cmd += ["--set", f"Body block/Refinement/Local refinements={max(level - 2, 0)}"]
+        if a.smoothing is not None:
+            cmd += ["--set", f"Contact pair hertz/Smoothing fraction={a.smoothing}"]
         run = subprocess.run(cmd, capture_output=True, text=True)
+        if run.returncode != 0 and a.keep_going:
+            print(f"level {level} failed: {(run.stdout + run.stderr).strip().splitlines()[-1]}")
+            rows.append(dict(level=level, failed=True))
+            continue
         if run.returncode != 0:
             print(run.stdout[-4000:], run.stderr[-4000:])
             sys.exit(f"glide failed at level {level}")
@@ -93,6 +112,13 @@ def main():
                          cutbacks=int(stats[-1]["cut_backs"]), time=t["total_wall_time"],
                          memory=t["peak_memory_mib"]))
 
+    failed = [r["level"] for r in rows if r.get("failed")]
+    rows = [r for r in rows if not r.get("failed")]
+    if a.table and failed:
+        with open(a.table + ".failed", "w") as f:
+            f.write(",".join(map(str, failed)) + "\n")
+    if not rows:
+        sys.exit("every level failed")
     print(f"{'level':>5} {'h':>9} {'DoFs':>7} {'a_h/a':>8} {'p0_h/p0':>8} {'L2 rel':>9} {'rate':>5} "
           f"{'its/step':>12} {'time':>6} {'MiB':>6}")
     for i, r in enumerate(rows):
@@ -102,7 +128,8 @@ def main():
     xs = [math.log(r["h"]) for r in rows]
     ys = [math.log(r["l2"]) for r in rows]
     mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
-    rate = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+    rate = (sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+            if len(rows) > 1 else float("nan"))
     fin = rows[-1]
     print(f"fitted L2 rate {rate:.3f}; finest mesh: p0_h/p0 = {fin['p0_ratio']:.4f}, a_h/a = {fin['a_ratio']:.4f}")
     if a.table:
