@@ -136,18 +136,7 @@ namespace glide
                 cell->get_dof_indices(cell_dofs);
                 face_values.reinit(cell, f);
                 // Nodes of this face: base index -> cell DoFs per component.
-                std::map<unsigned int, std::array<unsigned int, dim>> nodes;
-                for (unsigned int i = 0; i < fe.n_dofs_per_face(f); ++i)
-                  {
-                    const unsigned int k =
-                      fe.face_to_cell_index(i,
-                                            f,
-                                            cell->face_orientation(f),
-                                            cell->face_flip(f),
-                                            cell->face_rotation(f));
-                    const auto ci = fe.system_to_component_index(k);
-                    nodes[ci.second][ci.first] = k;
-                  }
+                const auto nodes = face_node_indices<dim>(fe, cell, f);
                 for (const auto &[base, k] : nodes)
                   {
                     SlaveNode &node = found[cell_dofs[k[0]]];

@@ -166,6 +166,35 @@ namespace glide
   } // namespace
 
   template <int dim>
+  std::map<unsigned int, std::array<unsigned int, dim>>
+  face_node_indices(const FiniteElement<dim>                             &fe,
+                    const typename DoFHandler<dim>::active_cell_iterator &cell,
+                    const unsigned int                                    f)
+  {
+    std::map<unsigned int, std::array<unsigned int, dim>> nodes;
+    for (unsigned int i = 0; i < fe.n_dofs_per_face(f); ++i)
+      {
+        const unsigned int k       = fe.face_to_cell_index(i,
+                                                     f,
+                                                     cell->face_orientation(f),
+                                                     cell->face_flip(f),
+                                                     cell->face_rotation(f));
+        const auto         ci      = fe.system_to_component_index(k);
+        nodes[ci.second][ci.first] = k;
+      }
+    return nodes;
+  }
+
+  template std::map<unsigned int, std::array<unsigned int, 2>>
+  face_node_indices<2>(const FiniteElement<2> &,
+                       const DoFHandler<2>::active_cell_iterator &,
+                       const unsigned int);
+  template std::map<unsigned int, std::array<unsigned int, 3>>
+  face_node_indices<3>(const FiniteElement<3> &,
+                       const DoFHandler<3>::active_cell_iterator &,
+                       const unsigned int);
+
+  template <int dim>
   MasterSurface<dim>::MasterSurface(const Elasticity<dim> &elasticity,
                                     const std::set<types::boundary_id> &ids,
                                     const double       fraction,
@@ -203,18 +232,7 @@ namespace glide
               continue;
             cell->get_dof_indices(cell_dofs);
             // The face's nodes: base index -> cell DoFs per component.
-            std::map<unsigned int, std::array<unsigned int, dim>> face_nodes;
-            for (unsigned int i = 0; i < fe.n_dofs_per_face(f); ++i)
-              {
-                const unsigned int k =
-                  fe.face_to_cell_index(i,
-                                        f,
-                                        cell->face_orientation(f),
-                                        cell->face_flip(f),
-                                        cell->face_rotation(f));
-                const auto ci = fe.system_to_component_index(k);
-                face_nodes[ci.second][ci.first] = k;
-              }
+            const auto        face_nodes = face_node_indices<dim>(fe, cell, f);
             std::vector<Node> found;
             for (const auto &[base, k] : face_nodes)
               {
@@ -352,6 +370,35 @@ namespace glide
     std::array<double, 3> N1, dN1, N2, dN2;
     lagrange(p, 1. - f, N1.data(), dN1.data());
     lagrange(p, f, N2.data(), dN2.data());
+    // A transition curve of facet i (mirrored about the plane x_a through
+    // node `plane` if a >= 0), and one of its two ends: the Hermite data
+    // (position at parameter s, tangent 2 f x'(s) times `sign`) of the
+    // facet `nodes` at its start (t = 0) or its end (t = 1).
+    auto transition = [&](const unsigned int i, const int plane, const int a) {
+      Piece t;
+      t.kind        = PieceKind::hermite;
+      t.facet       = i;
+      t.mirror_node = a >= 0 ? plane : -1;
+      t.mirror_axis = a >= 0 ? a : 0;
+      t.upper.fill(1.);
+      return t;
+    };
+    auto add_end = [&](Piece                           &t,
+                       const std::vector<unsigned int> &facet_nodes,
+                       const bool                       mirrored,
+                       const bool                       at_start,
+                       const std::array<double, 3>     &N,
+                       const std::array<double, 3>     &dN,
+                       const double                     sign) {
+      for (unsigned int k = 0; k <= p; ++k)
+        {
+          t.vnodes.emplace_back(facet_nodes[k], mirrored);
+          const double m = sign * 2. * f * dN[k];
+          t.coefficients.push_back(at_start ?
+                                     std::array<double, 4>{{N[k], m, 0., 0.}} :
+                                     std::array<double, 4>{{0., 0., N[k], m}});
+        }
+    };
     for (unsigned int i = 0; i < facets.size(); ++i)
       {
         const auto &facet = facets[i];
@@ -373,25 +420,10 @@ namespace glide
             if (f > 0)
               {
                 piece.begin = f;
-                Piece transition;
-                transition.kind        = PieceKind::hermite;
-                transition.facet       = i;
-                transition.mirror_node = start;
-                transition.mirror_axis = a;
-                transition.upper.fill(1.);
-                for (unsigned int k = 0; k <= p; ++k)
-                  {
-                    transition.vnodes.emplace_back(facet.nodes[k], true);
-                    transition.coefficients.push_back(
-                      {{N2[k], -2. * f * dN2[k], 0., 0.}});
-                  }
-                for (unsigned int k = 0; k <= p; ++k)
-                  {
-                    transition.vnodes.emplace_back(facet.nodes[k], false);
-                    transition.coefficients.push_back(
-                      {{0., 0., N2[k], 2. * f * dN2[k]}});
-                  }
-                pieces.push_back(transition);
+                Piece t     = transition(i, start, a);
+                add_end(t, facet.nodes, true, true, N2, dN2, -1.);
+                add_end(t, facet.nodes, false, false, N2, dN2, 1.);
+                pieces.push_back(t);
               }
           }
         else
@@ -405,24 +437,10 @@ namespace glide
             if (f > 0)
               {
                 piece.end = 1. - f;
-                Piece transition;
-                transition.kind  = PieceKind::hermite;
-                transition.facet = i;
-                transition.upper.fill(1.);
-                for (unsigned int k = 0; k <= p; ++k)
-                  {
-                    transition.vnodes.emplace_back(facet.nodes[k], false);
-                    transition.coefficients.push_back(
-                      {{N1[k], 2. * f * dN1[k], 0., 0.}});
-                  }
-                for (unsigned int k = 0; k <= p; ++k)
-                  {
-                    transition.vnodes.emplace_back(facets[next].nodes[k],
-                                                   false);
-                    transition.coefficients.push_back(
-                      {{0., 0., N2[k], 2. * f * dN2[k]}});
-                  }
-                pieces.push_back(transition);
+                Piece t   = transition(i, 0, -1);
+                add_end(t, facet.nodes, false, true, N1, dN1, 1.);
+                add_end(t, facets[next].nodes, false, false, N2, dN2, 1.);
+                pieces.push_back(t);
               }
           }
         else if (const int a = mirror_axis(end); a >= 0)
@@ -430,25 +448,10 @@ namespace glide
             if (f > 0)
               {
                 piece.end = 1. - f;
-                Piece transition;
-                transition.kind        = PieceKind::hermite;
-                transition.facet       = i;
-                transition.mirror_node = end;
-                transition.mirror_axis = a;
-                transition.upper.fill(1.);
-                for (unsigned int k = 0; k <= p; ++k)
-                  {
-                    transition.vnodes.emplace_back(facet.nodes[k], false);
-                    transition.coefficients.push_back(
-                      {{N1[k], 2. * f * dN1[k], 0., 0.}});
-                  }
-                for (unsigned int k = 0; k <= p; ++k)
-                  {
-                    transition.vnodes.emplace_back(facet.nodes[k], true);
-                    transition.coefficients.push_back(
-                      {{0., 0., N1[k], -2. * f * dN1[k]}});
-                  }
-                pieces.push_back(transition);
+                Piece t   = transition(i, end, a);
+                add_end(t, facet.nodes, false, true, N1, dN1, 1.);
+                add_end(t, facet.nodes, true, false, N1, dN1, -1.);
+                pieces.push_back(t);
               }
           }
         else

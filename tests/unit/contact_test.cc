@@ -145,23 +145,8 @@ namespace
     // others: the tilted plane passes through (0.5, 1) on the top of the
     // block; the circle or sphere (radius 1 about (0.5, 1.95)) dips 0.05
     // into it around x = 0.5.
-    std::mt19937                           gen(7);
-    std::uniform_real_distribution<double> small(-0.02, 0.02), force(0., 0.05);
-    VectorType U(e.locally_owned(), MPI_COMM_WORLD), v(U);
-    for (const auto i : e.displacement_owned())
-      {
-        U[i] = small(gen);
-        v[i] = small(gen);
-      }
-    for (const auto i : contact.owned_multipliers())
-      {
-        U[i] = force(gen);
-        v[i] = force(gen);
-      }
-    U.compress(VectorOperation::insert);
-    v.compress(VectorOperation::insert);
-    e.update_constraints().distribute(U);
-    e.update_constraints().distribute(v);
+    VectorType U, v;
+    glide_test::random_contact_state(e, contact, U, v, 7, 0.02, 0.05);
     contact.set_time(0.);
 
     const auto [err, ref] =

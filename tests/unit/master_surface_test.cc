@@ -117,28 +117,13 @@ namespace
       text += "subsection Boundary condition sx\n  set Surface = ball.x0\n"
               "  set Type = XSYMM\nend\nsubsection Boundary condition sz\n"
               "  set Surface = ball.z0\n  set Type = ZSYMM\nend\n";
-    Fixture<dim>                           s(text,
+    Fixture<dim> s(text,
                    "deformable_" + std::to_string(dim) +
                      std::to_string(int(100 * fraction)) +
                      std::to_string(degree) + enforcement + linearization +
                      (symmetry ? "sym" : "") + ".prm");
-    std::mt19937                           gen(11);
-    std::uniform_real_distribution<double> small(-0.01, 0.01), force(0., 0.02);
-    VectorType U(s.e.locally_owned(), MPI_COMM_WORLD), v(U);
-    for (const auto i : s.e.displacement_owned())
-      {
-        U[i] = small(gen);
-        v[i] = small(gen);
-      }
-    for (const auto i : s.contact.owned_multipliers())
-      {
-        U[i] = force(gen);
-        v[i] = force(gen);
-      }
-    U.compress(VectorOperation::insert);
-    v.compress(VectorOperation::insert);
-    s.e.update_constraints().distribute(U);
-    s.e.update_constraints().distribute(v);
+    VectorType   U, v;
+    glide_test::random_contact_state(s.e, s.contact, U, v, 11, 0.01, 0.02);
     s.contact.set_time(0.);
     ASSERT_FALSE(s.contact.needs_new_pattern(U)) << tag;
     const auto [err, ref] =
@@ -474,25 +459,9 @@ TEST(MasterSurface, JacobianAtTheAxisMatchesFiniteDifferences)
         << "subsection Contact pair pair\n  set Slave = block.top\n"
         << "  set Master = sphere.curved\n  set Smoothing fraction = " << f
         << "\nend\n";
-      Fixture<2>   s(t.str(), "axis" + std::to_string(int(10 * f)) + ".prm");
-      std::mt19937 gen(5);
-      std::uniform_real_distribution<double> small(-0.005, 0.005),
-        force(0., 0.02);
-      VectorType U(s.e.locally_owned(), MPI_COMM_WORLD), v(U);
-      for (const auto i : s.e.displacement_owned())
-        {
-          U[i] = small(gen);
-          v[i] = small(gen);
-        }
-      for (const auto i : s.contact.owned_multipliers())
-        {
-          U[i] = force(gen);
-          v[i] = force(gen);
-        }
-      U.compress(VectorOperation::insert);
-      v.compress(VectorOperation::insert);
-      s.e.update_constraints().distribute(U);
-      s.e.update_constraints().distribute(v);
+      Fixture<2> s(t.str(), "axis" + std::to_string(int(10 * f)) + ".prm");
+      VectorType U, v;
+      glide_test::random_contact_state(s.e, s.contact, U, v, 5, 0.005, 0.02);
       ASSERT_FALSE(s.contact.needs_new_pattern(U));
       const auto [err, ref] =
         glide_test::contact_jacobian_error(s.e, s.contact, U, v, 1e-7);

@@ -27,6 +27,8 @@ namespace glide_test
 #include <glide/contact/contact.h>
 #include <glide/mechanics/elasticity.h>
 
+#include <random>
+
 namespace glide_test
 {
   /// Largest difference between J v and the central difference
@@ -65,5 +67,42 @@ namespace glide_test
           ref = std::max(ref, std::abs(Fp[i]));
         }
     return {err, ref};
+  }
+} // namespace glide_test
+
+namespace glide_test
+{
+  /// A random state (U) and direction (v) for a finite-difference check:
+  /// displacements uniform in [-displacement, displacement], contact
+  /// forces in [0, force], consistent with the constraints.
+  template <int dim>
+  void
+  random_contact_state(const glide::Elasticity<dim> &e,
+                       const glide::Contact<dim>    &contact,
+                       glide::VectorType            &U,
+                       glide::VectorType            &v,
+                       const unsigned int            seed,
+                       const double                  displacement,
+                       const double                  force)
+  {
+    std::mt19937                           gen(seed);
+    std::uniform_real_distribution<double> small(-displacement, displacement),
+      positive(0., force);
+    U.reinit(e.locally_owned(), MPI_COMM_WORLD);
+    v.reinit(U);
+    for (const auto i : e.displacement_owned())
+      {
+        U[i] = small(gen);
+        v[i] = small(gen);
+      }
+    for (const auto i : contact.owned_multipliers())
+      {
+        U[i] = positive(gen);
+        v[i] = positive(gen);
+      }
+    U.compress(dealii::VectorOperation::insert);
+    v.compress(dealii::VectorOperation::insert);
+    e.update_constraints().distribute(U);
+    e.update_constraints().distribute(v);
   }
 } // namespace glide_test

@@ -10,12 +10,23 @@
 #include <deal.II/numerics/rtree.h>
 
 #include <array>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
 
 namespace glide
 {
+  /// The nodes of face @p f of @p cell: per node (keyed by its base index
+  /// in the vector-valued element), the cell-local DoF index of each
+  /// displacement component.
+  template <int dim>
+  std::map<unsigned int, std::array<unsigned int, dim>>
+  face_node_indices(
+    const dealii::FiniteElement<dim>                             &fe,
+    const typename dealii::DoFHandler<dim>::active_cell_iterator &cell,
+    const unsigned int                                            f);
+
   /**
    * The master surface of a contact pair on a deformable body (issue 3,
    * R1-R3): its facets, extracted from the boundary faces of degree 1 or 2
