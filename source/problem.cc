@@ -284,7 +284,8 @@ namespace glide
             << "processes," << Utilities::MPI::n_mpi_processes(comm) << "\n"
             << "linear_solver," << linear_solver.description() << "\n"
             << "total_wall_time," << wall.wall_time() << "\n"
-            << "peak_memory_mib," << memory << "\n";
+            << "peak_memory_mib," << memory << "\n"
+            << "contact_search_time," << contact.search_time() << "\n";
         for (const auto &[section, time] :
              timer.get_summary_data(TimerOutput::total_wall_time))
           out << "time:" << section << "," << time << "\n";

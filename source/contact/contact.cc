@@ -9,6 +9,7 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/full_matrix.h>
 
+#include <chrono>
 #include <fstream>
 #include <sstream>
 
@@ -310,9 +311,11 @@ namespace glide
   void
   Contact<dim>::move_surfaces(const VectorType &U) const
   {
+    const auto start = std::chrono::steady_clock::now();
     for (const auto &pair : pairs)
       if (pair.surface)
         pair.surface->set_displacement(U);
+    searching += std::chrono::steady_clock::now() - start;
   }
 
   template <int dim>
@@ -347,8 +350,10 @@ namespace glide
       s.x[d] += U[node.dofs[d]];
     if (pair.surface)
       {
-        s.projection = pair.surface->project(s.x);
-        s.found      = s.projection.found;
+        const auto start = std::chrono::steady_clock::now();
+        s.projection     = pair.surface->project(s.x);
+        searching += std::chrono::steady_clock::now() - start;
+        s.found = s.projection.found;
         s.gap =
           s.found ? s.projection.gap : std::numeric_limits<double>::infinity();
         s.normal = s.projection.normal;

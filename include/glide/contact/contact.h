@@ -8,6 +8,7 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
 #include <array>
+#include <chrono>
 #include <map>
 #include <string>
 #include <vector>
@@ -137,6 +138,15 @@ namespace glide
                 const double       time,
                 const bool         vtu);
 
+    /// Wall time spent in the search for deformable masters (R-tree set-up
+    /// and projections, in residuals, Jacobians and pattern checks), in
+    /// seconds: the search share of the run.
+    double
+    search_time() const
+    {
+      return searching.count();
+    }
+
     /// Effects for the log.
     std::vector<std::string>
     active_effects() const;
@@ -208,14 +218,15 @@ namespace glide
     void
     move_surfaces(const VectorType &U) const;
 
-    const Scene                    &scene;
-    const Elasticity<dim>          &elasticity;
-    MPI_Comm                        comm;
-    std::vector<Pair>               pairs;
-    VectorType                      last_displacement;
-    dealii::IndexSet                multipliers;
-    dealii::types::global_dof_index total_multipliers  = 0;
-    double                          max_youngs_modulus = 0.;
+    const Scene                          &scene;
+    const Elasticity<dim>                &elasticity;
+    MPI_Comm                              comm;
+    std::vector<Pair>                     pairs;
+    VectorType                            last_displacement;
+    mutable std::chrono::duration<double> searching{0.};
+    dealii::IndexSet                      multipliers;
+    dealii::types::global_dof_index       total_multipliers  = 0;
+    double                                max_youngs_modulus = 0.;
     /// Hard contact holds closed nodes at this gap, 1e-10 times the scene
     /// size, instead of exactly 0: a node that touches the master up to
     /// round-off (a body resting on a point) then counts as closed instead
