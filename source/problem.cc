@@ -14,6 +14,7 @@
 
 #include <sys/resource.h>
 
+#include <exception>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -45,27 +46,19 @@ namespace glide
 
   template <int dim>
   void
-  run_scene(const Scene &scene, MPI_Comm comm)
+  run_scene_with(const Scene        &scene,
+                 MPI_Comm            comm,
+                 ConditionalOStream &pcout,
+                 TimerOutput        &timer)
   {
-    ConditionalOStream pcout(std::cout,
-                             Utilities::MPI::this_mpi_process(comm) == 0);
-    TimerOutput timer(comm, pcout, TimerOutput::never, TimerOutput::wall_times);
-    Timer       wall(comm);
+    Timer wall(comm);
 
     Elasticity<dim> elasticity(scene, comm, timer);
     elasticity.setup(); // every input check happens here, before output
     Contact<dim> contact(scene, elasticity, comm);
     {
       TimerOutput::Scope t(timer, "setup");
-      try
-        {
-          contact.setup(elasticity.get_dof_handler().n_dofs());
-        }
-      catch (...)
-        {
-          t.stop(); // an input error: leave the timer section quietly
-          throw;
-        }
+      contact.setup(elasticity.get_dof_handler().n_dofs());
     }
     elasticity.setup_system(contact.owned_multipliers(),
                             [&](DynamicSparsityPattern &dsp) {
@@ -293,6 +286,35 @@ namespace glide
              timer.get_summary_data(TimerOutput::n_calls))
           out << "calls:" << section << "," << n << "\n";
       }
+  }
+
+  template <int dim>
+  void
+  run_scene(const Scene &scene, MPI_Comm comm)
+  {
+    ConditionalOStream pcout(std::cout,
+                             Utilities::MPI::this_mpi_process(comm) == 0);
+    // An error (an input error found during set-up, a failed load step)
+    // leaves the timer's scope before it is reported, so that the timer is
+    // not destroyed while the exception is in flight (it would print a
+    // warning about skipped MPI communication over the message).
+    std::exception_ptr failure;
+    {
+      TimerOutput timer(comm,
+                        pcout,
+                        TimerOutput::never,
+                        TimerOutput::wall_times);
+      try
+        {
+          run_scene_with<dim>(scene, comm, pcout, timer);
+        }
+      catch (...)
+        {
+          failure = std::current_exception();
+        }
+    }
+    if (failure)
+      std::rethrow_exception(failure);
   }
 
   template void
