@@ -179,6 +179,47 @@ namespace glide
                         solution_scale,
                         elasticity.residual_scale());
 
+    // Tangent predictor ('Load stepping/Predictor'), for steps that change
+    // prescribed displacements: one linear solve with the Jacobian at the
+    // converged state U0 carries their increment (in U_trial) and that of
+    // the loads into the whole body, instead of KINSOL's first iteration
+    // from U_trial, where the elements next to the prescribed nodes are
+    // distorted (or inverted). Without a displacement increment, KINSOL's
+    // first iteration from U_trial = U0 is that very solve: nothing to do.
+    const auto tangent_predictor =
+      [&](const VectorType &U0, const double t_new, VectorType &U_trial) {
+        VectorType D = U_trial;
+        D -= U0;
+        if (D.linfty_norm() == 0.)
+          return;
+        try
+          {
+            callbacks.setup_jacobian(U0);
+            VectorType F(owned, comm);
+            elasticity.predictor_residual(U0, D, t_new, F);
+            if (contact.active())
+              {
+                TimerOutput::Scope s(timer, "contact: residual");
+                contact.assemble(U0, &F, nullptr);
+              }
+            F *= -1.;
+            VectorType W(owned, comm);
+            callbacks.solve_jacobian(F, W);
+            W += U0;
+            elasticity.constraints_at(t_new).distribute(W);
+            U_trial = W;
+          }
+        catch (const InputError &)
+          {
+            throw;
+          }
+        catch (const std::exception &e)
+          {
+            pcout << "  predictor failed (" << e.what()
+                  << "); starting from the last converged state" << std::endl;
+          }
+      };
+
     const double nominal = 1. / scene.load_stepping.number_of_steps;
     double       dt      = nominal;
     // cut_backs counts over the run (statistics), step_cut_backs within the
@@ -193,10 +234,13 @@ namespace glide
         VectorType U_trial = U;
         elasticity.constraints_at(t).distribute(U_trial);
         contact.set_time(t);
-        contact.begin_solve();
         pcout << "Step " << step + 1 << ": load factor " << t << " (increment "
               << t - t_old << ")" << std::endl;
-        Timer      step_timer(comm);
+        Timer step_timer(comm);
+        contact.begin_solve(); // the predictor's residual counts no switches
+        if (scene.load_stepping.tangent_predictor)
+          tangent_predictor(U, t, U_trial);
+        contact.begin_solve();
         const auto result =
           newton.solve(U_trial, callbacks, residual_scale, solution_scale);
         if (!result.converged)

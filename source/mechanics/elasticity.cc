@@ -450,13 +450,30 @@ namespace glide
 
   template <int dim>
   void
+  Elasticity<dim>::predictor_residual(const VectorType &U,
+                                      const VectorType &D,
+                                      const double      t,
+                                      VectorType       &F) const
+  {
+    TimerOutput::Scope s(timer, "assembly: residual");
+    assemble(U, t, &F, nullptr, homogeneous_constraints, &D);
+  }
+
+  template <int dim>
+  void
   Elasticity<dim>::assemble(const VectorType                &U,
                             const double                     t,
                             VectorType                      *F,
                             MatrixType                      *J,
-                            const AffineConstraints<double> &constraints) const
+                            const AffineConstraints<double> &constraints,
+                            const VectorType                *increment) const
   {
     const VectorType U_ghost = ghosted_displacement(U);
+    VectorType       D_ghost;
+    if (increment)
+      D_ghost = ghosted_displacement(*increment);
+    // The tangent is needed for J and for the product with the increment.
+    const bool tangent = J || (F && increment);
     if (F)
       *F = 0;
     if (J)
@@ -558,7 +575,7 @@ namespace glide
                       v += P[2][2] * hoop;
                     cell_rhs(k) += (v - b[c] * phi) * w;
                   }
-                if (J)
+                if (tangent)
                   {
                     G[k] = 0;
                     for (unsigned int j = 0; j < dim; ++j)
@@ -567,7 +584,7 @@ namespace glide
                       G[k][2][2] = hoop;
                   }
               }
-            if (J)
+            if (tangent)
               {
                 for (unsigned int l = 0; l < n; ++l)
                   AG[l] = law.tangent(G[l]);
@@ -618,6 +635,14 @@ namespace glide
                   }
 
         cell->get_dof_indices(dofs);
+        if (F && increment)
+          {
+            Vector<double> d(n), Kd(n);
+            for (unsigned int k = 0; k < n; ++k)
+              d(k) = D_ghost[dofs[k]];
+            cell_matrix.vmult(Kd, d);
+            cell_rhs += Kd;
+          }
         if (F && J)
           constraints.distribute_local_to_global(
             cell_matrix, cell_rhs, dofs, *J, *F);

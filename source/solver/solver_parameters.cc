@@ -116,6 +116,19 @@ namespace glide
                       "0.5",
                       Patterns::Double(0.01, 0.9),
                       "Factor applied to the step size after a failure.");
+    prm.declare_entry(
+      "Predictor",
+      "tangent",
+      Patterns::Selection("tangent|none"),
+      "Initial guess of a load step that changes prescribed displacements. "
+      "'tangent': one linear solve with the Jacobian of the last converged "
+      "state carries the increment of the prescribed displacements and "
+      "loads into the whole body (Abaqus' first iteration), so that the "
+      "elements next to the prescribed nodes are not distorted or inverted; "
+      "it costs one Jacobian and one linear solve, not counted in the "
+      "Newton iterations (steps with loads only need none: KINSOL's first "
+      "iteration is that solve). 'none': the "
+      "last converged state with the new prescribed values.");
     prm.leave_subsection();
   }
 
@@ -126,6 +139,7 @@ namespace glide
     number_of_steps   = prm.get_integer("Number of steps");
     maximum_cut_backs = prm.get_integer("Maximum cut-backs");
     cut_back_factor   = prm.get_double("Cut-back factor");
+    tangent_predictor = prm.get("Predictor") == "tangent";
     prm.leave_subsection();
   }
 } // namespace glide

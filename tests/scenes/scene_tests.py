@@ -197,9 +197,11 @@ def case_cut_back():
     4 Newton iterations per attempt cannot converge at once; the step must be
     cut back (the log says why), retried, and the run must end at load
     factor 1. With no cut-backs allowed the same run must fail with exit
-    status 2 and say which step failed and why."""
+    status 2 and say which step failed and why. (Without the tangent
+    predictor, which would let this step converge: see tangent_predictor.)"""
     sets = ["Discretization/Geometric nonlinearity=true", "Nonlinear solver/Maximum iterations=4",
-            "Boundary condition load/Type=displacement", "Boundary condition load/Function=0; -0.4*t"]
+            "Boundary condition load/Type=displacement", "Boundary condition load/Function=0; -0.4*t",
+            "Load stepping/Predictor=none"]
     rows, log, _ = run(scene("block.prm"), *sets)
     check(rows[-1]["load_factor"] == 1.0, "run reaches load factor 1")
     check(rows[-1]["cut_backs"] >= 1, f"{int(rows[-1]['cut_backs'])} cut-back(s) recorded")
@@ -208,6 +210,32 @@ def case_cut_back():
     _, log, _ = run(scene("block.prm"), *sets, "Load stepping/Maximum cut-backs=0", expect_status=2)
     check(re.search(r"load step 1 failed after 0 cut-backs: no convergence", log) is not None,
           "failure names the step and the reason")
+
+
+def case_tangent_predictor():
+    """P3.2, 'Load stepping/Predictor = tangent': a step that changes
+    prescribed displacements starts from one linear solve with the tangent
+    of the converged state. On a linear scene that solve is the solution:
+    KINSOL needs 0 iterations (1 without the predictor) and the reactions
+    agree. The neo-Hookean block compressed by 40 % in one step (which needs
+    cut-backs without the predictor, see cut_back) converges without any
+    within 4 iterations."""
+    sets = ["Boundary condition load/Type=displacement", "Boundary condition load/Function=0.05*t; -0.1*t",
+            "Load stepping/Number of steps=2"]
+    tangent, _, _ = run(scene("block.prm"), *sets, name="tangent")
+    plain, _, _ = run(scene("block.prm"), *sets, "Load stepping/Predictor=none", name="plain")
+    check(all(r["kinsol_iterations"] == 0 for r in tangent),
+          f"linear: {[int(r['kinsol_iterations']) for r in tangent]} iterations with the predictor (0 expected)")
+    check(all(r["kinsol_iterations"] == 1 for r in plain),
+          f"linear: {[int(r['kinsol_iterations']) for r in plain]} iterations without it (1 expected)")
+    for a, b in zip(tangent, plain):
+        close(a["reaction_bottom_y"], b["reaction_bottom_y"], 1e-8, f"step {int(a['step'])}: same reaction")
+    rows, log, _ = run(scene("block.prm"), "Discretization/Geometric nonlinearity=true",
+                       "Nonlinear solver/Maximum iterations=4", "Boundary condition load/Type=displacement",
+                       "Boundary condition load/Function=0; -0.4*t", name="nonlinear")
+    check(rows[-1]["load_factor"] == 1.0 and rows[-1]["cut_backs"] == 0,
+          f"40 % compression in one step: {int(rows[-1]['cut_backs'])} cut-back(s) (0 expected)")
+    check("predictor failed" not in log, "the predictor did not fail")
 
 
 def case_mpi_matches_serial():

@@ -89,6 +89,17 @@ namespace glide
     void
     jacobian(const VectorType &U, MatrixType &J) const;
 
+    /// F(U) + K(U) D at load factor @p t, condensed like residual(): the
+    /// right-hand side of the tangent predictor, with @p D the change of
+    /// the prescribed values over the step (nonzero on constrained DoFs
+    /// only). K(U) D is formed cell by cell, before condensation, so that
+    /// the free rows see the prescribed increment.
+    void
+    predictor_residual(const VectorType &U,
+                       const VectorType &D,
+                       const double      t,
+                       VectorType       &F) const;
+
     /// Total reaction force of each Dirichlet boundary condition (by its
     /// name): the unconstrained residual summed over the DoFs it
     /// constrains (a DoF shared by two conditions counts for both).
@@ -214,13 +225,15 @@ namespace glide
         nodes;
     };
 
-    /// Residual and/or Jacobian, condensed with @p constraints.
+    /// Residual and/or Jacobian, condensed with @p constraints; with
+    /// @p increment, F also gains K(U) times it (before condensation).
     void
     assemble(const VectorType                        &U,
              const double                             t,
              VectorType                              *F,
              MatrixType                              *J,
-             const dealii::AffineConstraints<double> &constraints) const;
+             const dealii::AffineConstraints<double> &constraints,
+             const VectorType *increment = nullptr) const;
 
     /// Vertices of a node set or of surfaces (comma-separated
     /// <body>.<surface>), with their DoFs; only vertices with owned DoFs if

@@ -52,6 +52,7 @@ namespace glide
     unsigned int number_of_steps   = 1;
     unsigned int maximum_cut_backs = 6;
     double       cut_back_factor   = 0.5;
+    bool         tangent_predictor = true;
 
     static void
     declare_parameters(dealii::ParameterHandler &prm);
