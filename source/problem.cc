@@ -169,7 +169,10 @@ namespace glide
       pcout << "    iteration " << std::setw(2) << k << ": scaled residual "
             << scientific(r) << std::endl;
     };
-    NonlinearSolver newton(scene.nonlinear_solver, comm);
+    NonlinearSolver           newton(scene.nonlinear_solver, comm);
+    NonlinearSolverParameters damped_parameters = scene.nonlinear_solver;
+    damped_parameters.strategy                  = "line search";
+    NonlinearSolver damped(damped_parameters, comm);
     // KINSOL's scalings: force rows and contact rows by 1/(E_max A_ref),
     // displacements by 1/L, contact forces by 1/(E_max A_ref).
     VectorType residual_scale(owned, comm), solution_scale(owned, comm);
@@ -241,8 +244,22 @@ namespace glide
         if (scene.load_stepping.tangent_predictor)
           tangent_predictor(U, t, U_trial);
         contact.begin_solve();
-        const auto result =
+        const VectorType U_start = U_trial;
+        auto             result =
           newton.solve(U_trial, callbacks, residual_scale, solution_scale);
+        if (!result.converged && scene.nonlinear_solver.retry_with_line_search)
+          {
+            pcout << "  step failed with full Newton steps: " << result.message
+                  << "\n  retrying with line search" << std::endl;
+            U_trial = U_start;
+            contact.begin_solve();
+            const auto first = result;
+            result =
+              damped.solve(U_trial, callbacks, residual_scale, solution_scale);
+            // Both attempts count.
+            result.iterations += first.iterations;
+            result.linear_iterations += first.linear_iterations;
+          }
         if (!result.converged)
           {
             pcout << "  step failed: " << result.message << std::endl;

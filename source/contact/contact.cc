@@ -112,48 +112,81 @@ namespace glide
         else
           pair.master = std::make_unique<RigidMaster<dim>>(p, path);
 
-        std::set<types::boundary_id> ids;
-        for (const auto &name : Utilities::split_string_list(p.slave, ','))
-          for (const auto id :
-               elasticity.get_mesh().surface(name, path + "/Slave"))
-            ids.insert(id);
-
-        // Slave nodes: every node of a slave face, keyed by its x DoF, with
-        // the tributary area int N_a dA (times 2 pi r in axisymmetric
-        // analysis) and the mean size of the adjacent slave facets. Ghost
-        // cells contribute too, so that nodes on a process boundary get
-        // their whole area.
         std::map<types::global_dof_index, SlaveNode>    found;
         std::map<types::global_dof_index, unsigned int> n_facets;
-        for (const auto &cell : dof_handler.active_cell_iterators())
+        const bool                                      node_based =
+          std::any_of(scene.node_sets.begin(),
+                      scene.node_sets.end(),
+                      [&](const auto &n) { return n.name == p.slave; });
+        if (node_based)
           {
-            if (cell->is_artificial())
-              continue;
-            for (const auto f : cell->face_indices())
+            // Node-based slave surface (as Abaqus' *SURFACE, TYPE=NODE):
+            // the vertices of the node set, each with contact area 1 (so
+            // CPRESS is the nodal force) and, as its size, the mean
+            // diameter of the cells around it.
+            for (const auto &[dofs, X] :
+                 elasticity.find_nodes(p.slave, path + "/Slave", false))
               {
-                if (!cell->face(f)->at_boundary() ||
-                    ids.count(cell->face(f)->boundary_id()) == 0)
-                  continue;
-                cell->get_dof_indices(cell_dofs);
-                face_values.reinit(cell, f);
-                // Nodes of this face: base index -> cell DoFs per component.
-                const auto nodes = face_node_indices<dim>(fe, cell, f);
-                for (const auto &[base, k] : nodes)
+                SlaveNode &node = found[dofs[0]];
+                node.dofs       = dofs;
+                node.X          = X;
+                node.area       = 1.;
+              }
+            for (const auto &cell : dof_handler.active_cell_iterators())
+              if (!cell->is_artificial())
+                for (const auto v : cell->vertex_indices())
                   {
-                    SlaveNode &node = found[cell_dofs[k[0]]];
-                    for (unsigned int c = 0; c < dim; ++c)
-                      node.dofs[c] = cell_dofs[k[c]];
-                    node.X =
-                      mapping.transform_unit_to_real_cell(cell,
-                                                          unit_points[k[0]]);
-                    for (unsigned int q = 0; q < quadrature.size(); ++q)
-                      node.area +=
-                        face_values.shape_value(k[0], q) * face_values.JxW(q) *
-                        (axisymmetric ? 2 * numbers::PI *
-                                          face_values.quadrature_point(q)[0] :
-                                        1.);
-                    node.size += cell->face(f)->diameter();
-                    ++n_facets[cell_dofs[k[0]]];
+                    const auto it = found.find(cell->vertex_dof_index(v, 0));
+                    if (it == found.end())
+                      continue;
+                    it->second.size += cell->diameter();
+                    ++n_facets[it->first];
+                  }
+          }
+        else
+          {
+            std::set<types::boundary_id> ids;
+            for (const auto &name : Utilities::split_string_list(p.slave, ','))
+              for (const auto id :
+                   elasticity.get_mesh().surface(name, path + "/Slave"))
+                ids.insert(id);
+
+            // Slave nodes: every node of a slave face, keyed by its x DoF, with
+            // the tributary area int N_a dA (times 2 pi r in axisymmetric
+            // analysis) and the mean size of the adjacent slave facets. Ghost
+            // cells contribute too, so that nodes on a process boundary get
+            // their whole area.
+            for (const auto &cell : dof_handler.active_cell_iterators())
+              {
+                if (cell->is_artificial())
+                  continue;
+                for (const auto f : cell->face_indices())
+                  {
+                    if (!cell->face(f)->at_boundary() ||
+                        ids.count(cell->face(f)->boundary_id()) == 0)
+                      continue;
+                    cell->get_dof_indices(cell_dofs);
+                    face_values.reinit(cell, f);
+                    // Nodes of this face: base index -> cell DoFs per
+                    // component.
+                    const auto nodes = face_node_indices<dim>(fe, cell, f);
+                    for (const auto &[base, k] : nodes)
+                      {
+                        SlaveNode &node = found[cell_dofs[k[0]]];
+                        for (unsigned int c = 0; c < dim; ++c)
+                          node.dofs[c] = cell_dofs[k[c]];
+                        node.X = mapping.transform_unit_to_real_cell(
+                          cell, unit_points[k[0]]);
+                        for (unsigned int q = 0; q < quadrature.size(); ++q)
+                          node.area += face_values.shape_value(k[0], q) *
+                                       face_values.JxW(q) *
+                                       (axisymmetric ?
+                                          2 * numbers::PI *
+                                            face_values.quadrature_point(q)[0] :
+                                          1.);
+                        node.size += cell->face(f)->diameter();
+                        ++n_facets[cell_dofs[k[0]]];
+                      }
                   }
               }
           }
@@ -161,7 +194,11 @@ namespace glide
           if (owned.is_element(dof))
             {
               node.size /= n_facets[dof];
-              node.c = max_youngs_modulus * node.area / node.size;
+              // A node-based slave scales c with its size^(dim-1), not with
+              // its nominal area 1, so that iterations stay unit-free.
+              node.c = max_youngs_modulus *
+                       (node_based ? std::pow(node.size, dim - 1) : node.area) /
+                       node.size;
               const double stiffness = p.penalty_stiffness > 0 ?
                                          p.penalty_stiffness :
                                          1000. * max_youngs_modulus / node.size;
@@ -192,7 +229,8 @@ namespace glide
                           "surface).");
               }
             for (const auto &node : pair.nodes)
-              pair.previous_projection.push_back(pair.surface->project(node.X));
+              pair.previous_projection.push_back(
+                pair.surface->project(node.X, 1.5 * node.size));
             pair.coupled.resize(pair.nodes.size());
           }
         for (const auto &node : pair.nodes)
@@ -249,7 +287,7 @@ namespace glide
               pair.coupled[i] =
                 pair.surface->nodes_near(x, pair.surface->facet_size());
               // ... and those of its projection now.
-              const auto projection = pair.surface->project(x);
+              const auto projection = pair.surface->project(x, 1.5 * node.size);
               if (projection.found)
                 {
                   const auto used = pair.surface->nodes_of(projection);
@@ -351,7 +389,7 @@ namespace glide
     if (pair.surface)
       {
         const auto start = std::chrono::steady_clock::now();
-        s.projection     = pair.surface->project(s.x);
+        s.projection     = pair.surface->project(s.x, 1.5 * node.size);
         searching += std::chrono::steady_clock::now() - start;
         s.found = s.projection.found;
         s.gap =

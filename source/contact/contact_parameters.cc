@@ -39,7 +39,9 @@ namespace glide
       "",
       Patterns::Anything(),
       "Slave surface <body>.<surface> (usually the finer or softer "
-      "side), or a node set for a node-based slave surface.");
+      "side), or the name of a node set for a node-based slave surface "
+      "(each node with contact area 1, so that its CPRESS is its contact "
+      "force, as in Abaqus).");
     prm.declare_entry(
       "Master",
       "rigid plane",

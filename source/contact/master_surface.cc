@@ -931,14 +931,27 @@ namespace glide
 
   template <int dim>
   typename MasterSurface<dim>::Projection
-  MasterSurface<dim>::project(const Point<dim> &xs) const
+  MasterSurface<dim>::project(const Point<dim> &xs,
+                              const double      search_radius) const
+  {
+    // The wider search only where the usual one finds nothing: deeper
+    // candidates must not compete with the pieces next to the point.
+    const Projection p = project_within(xs, 1.5 * max_size);
+    if (p.found || search_radius <= 1.5 * max_size)
+      return p;
+    return project_within(xs, search_radius);
+  }
+
+  template <int dim>
+  typename MasterSurface<dim>::Projection
+  MasterSurface<dim>::project_within(const Point<dim> &xs,
+                                     const double      radius) const
   {
     namespace bgi = boost::geometry::index;
     Projection best, best_vertex;
     if (pieces.empty())
       return best;
-    const double radius = 1.5 * max_size;
-    Point<dim>   lo = xs, hi = xs;
+    Point<dim> lo = xs, hi = xs;
     for (unsigned int d = 0; d < dim; ++d)
       {
         lo[d] -= radius;

@@ -249,8 +249,11 @@ namespace glide
 
     nonlinear_solver.parse_parameters(prm);
     if (nonlinear_solver.strategy == "automatic")
-      nonlinear_solver.strategy =
-        contact_pairs.empty() ? "line search" : "newton";
+      {
+        nonlinear_solver.strategy =
+          contact_pairs.empty() ? "line search" : "newton";
+        nonlinear_solver.retry_with_line_search = !contact_pairs.empty();
+      }
     linear_solver.parse_parameters(prm);
     load_stepping.parse_parameters(prm);
     output.parse_parameters(prm);
@@ -298,16 +301,21 @@ namespace glide
       }
 
     for (const auto &cp : contact_pairs)
-      for (const auto &surface : Utilities::split_string_list(cp.slave, ','))
-        {
-          const std::string path = "Contact pair " + cp.name + "/Slave";
-          const auto        dot  = surface.find('.');
-          require(
-            dot != std::string::npos &&
-              body_names.count(surface.substr(0, dot)) > 0,
-            "Parameter '" + path + "' = '" + surface +
-              "' is not a surface <body>.<surface> of a body of this scene.");
-        }
+      {
+        // A node-based slave surface: the name of a node set.
+        if (node_set_names.count(cp.slave) > 0)
+          continue;
+        for (const auto &surface : Utilities::split_string_list(cp.slave, ','))
+          {
+            const std::string path = "Contact pair " + cp.name + "/Slave";
+            const auto        dot  = surface.find('.');
+            require(dot != std::string::npos &&
+                      body_names.count(surface.substr(0, dot)) > 0,
+                    "Parameter '" + path + "' = '" + surface +
+                      "' is not a surface <body>.<surface> of a body of this "
+                      "scene, nor the name of a node set.");
+          }
+      }
 
     require(!(manufactured_solution != "none" && geometric_nonlinearity),
             "Parameter 'Verification/Manufactured solution' needs a "

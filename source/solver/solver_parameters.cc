@@ -17,7 +17,11 @@ namespace glide
                       "automatic: newton in scenes with contact (the "
                       "complementarity function is only semismooth, and "
                       "KINSOL's line search stalls at active-set changes), "
-                      "line search otherwise.");
+                      "and a load step that fails with it (no convergence, "
+                      "active-set cycling, an inverted element) is tried "
+                      "once more with line search, from the same initial "
+                      "guess, before it is cut back; line search "
+                      "otherwise.");
     prm.declare_entry("Tolerance",
                       "1e-10",
                       Patterns::Double(0.),

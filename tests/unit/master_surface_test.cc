@@ -313,6 +313,25 @@ TEST(MasterSurface, ProjectionOntoAFlatSurface)
   EXPECT_FALSE(top->project(Point<2>(0.5, 5.)).found);
 }
 
+// A slave node deeper in the master than 1.5 facets (a coarse slave on a
+// fine or thin master) is found only with the slave's own search radius,
+// which project() uses where the usual search finds nothing.
+TEST(MasterSurface, DeepPenetrationFoundWithTheSlaveRadius)
+{
+  Fixture<2>   s(ball_on_block(2, 0.2, 1, "hard"), "deep.prm");
+  const auto   top   = master_of<2>(s, "block.top", 0.2);
+  const double depth = 2. * top->facet_size();
+  ASSERT_GT(depth, 1.5 * top->facet_size());
+  const Point<2> x(0.5, 1. - depth);
+  EXPECT_FALSE(top->project(x).found);
+  const auto p = top->project(x, 1.5 * depth);
+  ASSERT_TRUE(p.found);
+  EXPECT_NEAR(p.gap, -depth, 1e-13);
+  EXPECT_NEAR(p.point[0], 0.5, 1e-13);
+  // Near the surface the usual search decides, whatever the radius.
+  EXPECT_NEAR(top->project(Point<2>(0.5, 0.99), 10.).gap, -0.01, 1e-13);
+}
+
 // R2.1: a master that ends on a symmetry plane x = 0.5 with XSYMM there is
 // smoothed against its mirror image; without the condition it is not.
 TEST(MasterSurface, MirroredEndAtSymmetryPlane)

@@ -148,9 +148,13 @@ namespace glide
     void
     set_displacement(const VectorType &U);
 
-    /// Projection of the slave point @p x.
+    /// Projection of the slave point @p x onto the pieces within 1.5 times
+    /// the largest facet of it, or, where that finds none, within
+    /// @p radius. The slave side passes 1.5 times its own facet size, so
+    /// that a slave node that penetrates a finely meshed (thin) master by
+    /// more than a master facet is still found.
     Projection
-    project(const dealii::Point<dim> &x) const;
+    project(const dealii::Point<dim> &x, const double radius = 0.) const;
 
     /// Linearization at projection @p p of the slave point @p x with slave
     /// DoFs @p slave_dofs.
@@ -203,6 +207,10 @@ namespace glide
     }
 
   private:
+    /// project() with candidates from the search tree within @p radius.
+    Projection
+    project_within(const dealii::Point<dim> &x, const double radius) const;
+
     void
     build_pieces_2d(const std::array<std::set<dealii::types::global_dof_index>,
                                      dim> &symmetric_dofs,

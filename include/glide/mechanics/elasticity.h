@@ -77,6 +77,16 @@ namespace glide
     VectorType
     ghosted_displacement(const VectorType &U) const;
 
+    /// Vertices of a node set or of surfaces (comma-separated
+    /// <body>.<surface>), with their DoFs; only vertices with owned DoFs if
+    /// @p owned_only, else also those of ghost cells. Throws InputError for
+    /// node-set points that match no vertex.
+    std::vector<std::pair<std::array<dealii::types::global_dof_index, dim>,
+                          dealii::Point<dim>>>
+    find_nodes(const std::string &surface,
+               const std::string &parameter,
+               const bool         owned_only) const;
+
     /// Constraints with the prescribed values at load factor @p t.
     dealii::AffineConstraints<double>
     constraints_at(const double t) const;
@@ -235,15 +245,6 @@ namespace glide
              const dealii::AffineConstraints<double> &constraints,
              const VectorType *increment = nullptr) const;
 
-    /// Vertices of a node set or of surfaces (comma-separated
-    /// <body>.<surface>), with their DoFs; only vertices with owned DoFs if
-    /// @p owned_only, else also those of ghost cells. Throws InputError for
-    /// node-set points that match no vertex.
-    std::vector<std::pair<std::array<dealii::types::global_dof_index, dim>,
-                          dealii::Point<dim>>>
-    find_nodes(const std::string &surface,
-               const std::string &parameter,
-               const bool         owned_only) const;
 
     /// The displacement components a Dirichlet condition prescribes.
     dealii::ComponentMask

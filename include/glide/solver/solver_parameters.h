@@ -12,6 +12,9 @@ namespace glide
     /// "newton" (full steps), "line search", or "automatic" (newton with
     /// contact, line search without).
     std::string strategy = "automatic";
+    /// Retry a failed step with line search before cutting back (set by
+    /// 'automatic' in scenes with contact).
+    bool retry_with_line_search = false;
     /// Stop when the scaled max-norm of the residual is below this. The
     /// residual is scaled by 1 / (E_max * A_ref), A_ref the mean boundary
     /// facet measure, so the tolerance is unit-free (a strain-like number).
