@@ -197,7 +197,9 @@ def ironing_lines(results):
              "tangential reaction over the mean normal force (frictionless: the tangential force is "
              "small and changes sign, so its own ripple is not meaningful). Newton iterations count "
              "every attempt of a step that converged; cut-backs add failed attempts. The runs go two "
-             "at a time, so times compare only roughly.", "",
+             "at a time, so times compare only roughly. In 2D with a smoothed master the force direction is "
+             "the gap gradient, so the unsymmetric and the symmetrized Jacobian coincide (same rows, same "
+             "iterations); they differ only where a slave node touches a faceted vertex.", "",
              "| master | Jacobian | reached load factor | steps | A normal | mean normal force | tangential range / normal | mean / max Newton its per step | cut-backs | time [s] | contact share |",
              "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for key, e in results.items():
