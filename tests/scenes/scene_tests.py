@@ -321,6 +321,33 @@ def case_nearly_parallel():
     check("nan" not in log.lower(), "no NaN in the log")
 
 
+def case_ironing_faceted_short():
+    """Issue 3 P6.3 'ironing over a faceted master', shortened for ctest:
+    study/scenes/ironing-2d.prm with the die (refined twice, not three
+    times) as slave and the slab's faceted top (f = 0) as master, pressed
+    0.7 and slid 1.0 (four slab facets) in 40 nominal steps, geometrically
+    nonlinear, KINSOL with line search. Measured: 45 steps, 8 cut-backs
+    (6 for active-set cycling, 2 for inverted slab elements), at most 18
+    iterations per step. Checks: it reaches the end with at most 15
+    cut-backs and at most 25 iterations per step, no NaN, no penetration,
+    and the ground reaction balances the drive in every step."""
+    rows, log, _ = run(os.path.join(ROOT, "study", "scenes", "ironing-2d.prm"), "Output/Write VTU=false",
+                       "Contact pair ironing/Slave=die.outer", "Contact pair ironing/Master=slab.top",
+                       "Contact pair ironing/Smoothing fraction=0", "Body die/Refinement/Global refinements=2",
+                       "Boundary condition drive/Function=1.0*max(0, (t - 0.5)/0.5); -0.7*min(1, t/0.5)",
+                       "Load stepping/Number of steps=40", "Load stepping/Maximum cut-backs=10")
+    check(rows[-1]["load_factor"] == 1.0, "reaches the end of the slide")
+    check(rows[-1]["cut_backs"] <= 15, f"{int(rows[-1]['cut_backs'])} cut-backs (at most 15)")
+    check(max(r["kinsol_iterations"] for r in rows) <= 25,
+          f"at most {int(max(r['kinsol_iterations'] for r in rows))} iterations per step (at most 25)")
+    check("nan" not in log.lower(), "no NaN in the log")
+    for r in rows:
+        check(r["contact_ironing_max_penetration"] <= 1e-9, f"no penetration at t={r['load_factor']}")
+        check(abs(r["reaction_ground_y"] + r["reaction_drive_y"]) <= 1e-9 * max(abs(r["reaction_drive_y"]), 1e-6),
+              f"balance at t={r['load_factor']}")
+    check(abs(rows[-1]["reaction_drive_y"]) > 0.1, f"the die carries {rows[-1]['reaction_drive_y']:.3g}")
+
+
 def case_node_based_slave():
     """Issue 3 section 1 (node-based slave surface): the rigid punch with
     the slave given as a node set of the block's 65 top vertices instead of
