@@ -236,6 +236,7 @@ namespace glide
         for (const auto &node : pair.nodes)
           pair.previous_position.push_back(node.X);
         pair.slip.assign(pair.nodes.size(), 0.);
+        pair.slip_components.assign(pair.nodes.size(), {{0., 0.}});
         pair.last_closed.assign(pair.nodes.size(), -1);
         pair.switches.assign(pair.nodes.size(), 0);
         pairs.push_back(std::move(pair));
@@ -649,6 +650,17 @@ namespace glide
       for (unsigned int i = 0; i < pair.nodes.size(); ++i)
         {
           const NodeState s = state(pair, pair.nodes[i], U);
+          // The tangential part of the relative motion over the step: its
+          // length adds to CSLIP, its components along the local tangent
+          // directions (R13.1) to CSLIP1 (and CSLIP2).
+          const auto accumulate = [&](const unsigned int    k,
+                                      const Tensor<1, dim> &relative) {
+            const Tensor<1, dim> &n = s.normal;
+            pair.slip[k] += (relative - (relative * n) * n).norm();
+            const auto tangents = contact_tangents<dim>(n);
+            for (unsigned int a = 0; a < dim - 1; ++a)
+              pair.slip_components[k][a] += relative * tangents[a];
+          };
           if (s.closed && pair.surface)
             {
               // Relative to the master's material point that was under the
@@ -659,11 +671,9 @@ namespace glide
                 {
                   const Point<dim> y =
                     pair.surface->evaluate(old.piece, old.xi).first;
-                  const Point<dim>     y_old = old.point;
-                  const Tensor<1, dim> relative =
-                    (s.x - pair.previous_position[i]) - (y - y_old);
-                  const Tensor<1, dim> &n = s.normal;
-                  pair.slip[i] += (relative - (relative * n) * n).norm();
+                  const Point<dim> y_old = old.point;
+                  accumulate(i,
+                             (s.x - pair.previous_position[i]) - (y - y_old));
                 }
             }
           else if (s.closed)
@@ -675,10 +685,8 @@ namespace glide
                 pair.master->project(pair.previous_position[i]).closest_point;
               pair.master->set_time(t_new);
               const Point<dim> y_new = pair.master->move(y_old, t_old, t_new);
-              const Tensor<1, dim> relative =
-                (s.x - pair.previous_position[i]) - (y_new - y_old);
-              const Tensor<1, dim> &n = s.normal;
-              pair.slip[i] += (relative - (relative * n) * n).norm();
+              accumulate(i,
+                         (s.x - pair.previous_position[i]) - (y_new - y_old));
             }
           pair.previous_position[i] = s.x;
           if (pair.surface)
@@ -695,8 +703,10 @@ namespace glide
                             const bool         vtu)
   {
     // Per node: X (dim), x (dim), COPEN, force, CPRESS, CSTATUS, CSLIP,
-    // normal (dim), local tangent directions ((dim - 1) x dim).
-    const unsigned int n_values = 3 * dim + 5 + (dim - 1) * dim;
+    // normal (dim), local tangent directions ((dim - 1) x dim), slip
+    // components CSLIP1 (, CSLIP2).
+    const unsigned int n_values        = 3 * dim + 5 + (dim - 1) * (dim + 1);
+    const unsigned int first_component = 3 * dim + 5 + (dim - 1) * dim;
     move_surfaces(U);
     for (auto &pair : pairs)
       {
@@ -721,6 +731,8 @@ namespace glide
             for (const auto &t : contact_tangents<dim>(s.normal))
               for (unsigned int d = 0; d < dim; ++d)
                 local.push_back(t[d]);
+            for (unsigned int a = 0; a < dim - 1; ++a)
+              local.push_back(pair.slip_components[i][a]);
           }
         const auto all = Utilities::MPI::gather(comm, local, 0);
         if (Utilities::MPI::this_mpi_process(comm) != 0)
@@ -740,12 +752,20 @@ namespace glide
             out << X[d] << ",";
           for (unsigned int d = 0; d < dim; ++d)
             out << x[d] << ",";
-          out << "COPEN,force,CPRESS,CSTATUS,CSLIP\n";
+          out << "COPEN,force,CPRESS,CSTATUS,CSLIP";
+          for (unsigned int a = 0; a < dim - 1; ++a)
+            out << ",CSLIP" << a + 1;
+          out << "\n";
           for (const auto &values : all)
             for (unsigned int k = 0; k + n_values <= values.size();
                  k += n_values)
-              for (unsigned int j = 0; j < 2 * dim + 5; ++j)
-                out << values[k + j] << (j + 1 < 2 * dim + 5 ? "," : "\n");
+              {
+                for (unsigned int j = 0; j < 2 * dim + 5; ++j)
+                  out << values[k + j] << (j + 1 < 2 * dim + 5 ? "," : "");
+                for (unsigned int a = 0; a < dim - 1; ++a)
+                  out << "," << values[k + first_component + a];
+                out << "\n";
+              }
         }
         std::rename((stem + "-" + number + ".csv.tmp").c_str(),
                     (stem + "-" + number + ".csv").c_str());
@@ -761,7 +781,7 @@ namespace glide
               DataOutBase::Patch<0, dim> patch;
               for (unsigned int d = 0; d < dim; ++d)
                 patch.vertices[0][d] = values[k + d];
-              patch.data.reinit(5 + 2 * dim + (dim - 1) * dim, 1);
+              patch.data.reinit(5 + 2 * dim + (dim - 1) * (dim + 1), 1);
               for (unsigned int j = 0; j < 5; ++j)
                 patch.data(j, 0) = values[k + 2 * dim + j];
               for (unsigned int d = 0; d < dim; ++d)
@@ -772,6 +792,9 @@ namespace glide
                 }
               for (unsigned int j = 0; j < (dim - 1) * dim; ++j)
                 patch.data(5 + 2 * dim + j, 0) = values[k + 3 * dim + 5 + j];
+              for (unsigned int a = 0; a < dim - 1; ++a)
+                patch.data(5 + 2 * dim + (dim - 1) * dim + a, 0) =
+                  values[k + first_component + a];
               patch.patch_index = patches.size();
               patches.push_back(patch);
             }
@@ -784,6 +807,8 @@ namespace glide
         for (unsigned int a = 0; a < dim - 1; ++a)
           for (unsigned int d = 0; d < dim; ++d)
             names.push_back("tangent" + std::to_string(a + 1));
+        for (unsigned int a = 0; a < dim - 1; ++a)
+          names.push_back("CSLIP" + std::to_string(a + 1));
         std::vector<
           std::tuple<unsigned int,
                      unsigned int,

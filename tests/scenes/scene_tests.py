@@ -420,7 +420,8 @@ def case_contact_slip():
     slave node slips exactly 0.3 relative to the plane (with nu = 0 the
     compression moves no node sideways); the contact VTU files open in VTK
     with CPRESS, COPEN, CSTATUS, CSLIP and the normal; the .pvd lists
-    every step."""
+    every step. CSLIP1, the slip component along the local tangent t1
+    (R13.1), is +0.3."""
     import vtk
     from vtk.util.numpy_support import vtk_to_numpy
     extra = ("set Contact pairs = base\nsubsection Contact pair base\n set Slave = block.bottom\n"
@@ -453,6 +454,11 @@ def case_contact_slip():
     t1 = vtk_to_numpy(pd.GetArray("tangent1"))
     check(abs(t1[:, 0] + 1).max() < 1e-12 and abs(t1[:, 1]).max() < 1e-12, "tangent1 = e_z x n = (-1, 0)")
     check(abs(vtk_to_numpy(pd.GetArray("CSLIP")) - 0.3).max() < 1e-6, "CSLIP in the VTU")
+    # R13.1 slip components: the slave moves -0.3 in x relative to the
+    # plane, i.e. +0.3 along t1 = (-1, 0); a sign error or a missing
+    # component fails here.
+    check(all(abs(float(n["CSLIP1"]) - 0.3) < 1e-9 for n in nodes), "CSLIP1 = +0.3 along t1 at every node")
+    check(abs(vtk_to_numpy(pd.GetArray("CSLIP1")) - 0.3).max() < 1e-6, "CSLIP1 in the VTU")
 
 
 def case_amg_matches_direct():

@@ -177,6 +177,9 @@ namespace glide
       /// accumulated slip.
       std::vector<dealii::Point<dim>> previous_position;
       std::vector<double>             slip;
+      /// Accumulated slip components along the local tangent directions
+      /// (CSLIP1, CSLIP2; only the first in 2D).
+      std::vector<std::array<double, 2>> slip_components;
       /// Open/closed state at the last residual evaluation and the number
       /// of switches in the current solve, per node (cycling detection).
       mutable std::vector<signed char>  last_closed;
