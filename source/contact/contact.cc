@@ -65,9 +65,15 @@ namespace glide
   void
   Contact<dim>::setup(const types::global_dof_index first_multiplier)
   {
+    // E_max of the deformable bodies (as in Elasticity).
     for (const auto &b : scene.bodies)
-      max_youngs_modulus =
-        std::max(max_youngs_modulus, b.material.youngs_modulus);
+      if (!b.rigid)
+        max_youngs_modulus =
+          std::max(max_youngs_modulus, b.material.youngs_modulus);
+    if (max_youngs_modulus == 0)
+      for (const auto &b : scene.bodies)
+        max_youngs_modulus =
+          std::max(max_youngs_modulus, b.material.youngs_modulus);
     clearance                = 1e-10 * elasticity.length_scale();
     const auto &dof_handler  = elasticity.get_dof_handler();
     const auto &fe           = dof_handler.get_fe();
@@ -112,6 +118,13 @@ namespace glide
         else
           pair.master = std::make_unique<RigidMaster<dim>>(p, path);
 
+        for (const auto &name : Utilities::split_string_list(p.slave, ','))
+          for (const auto &body : scene.bodies)
+            require(!body.rigid || name.rfind(body.name + ".", 0) != 0,
+                    "Contact pair '" + p.name + "': the slave surface '" +
+                      name + "' belongs to the rigid body '" + body.name +
+                      "'; a rigid body can only be the master (swap Slave "
+                      "and Master).");
         std::map<types::global_dof_index, SlaveNode>    found;
         std::map<types::global_dof_index, unsigned int> n_facets;
         const bool                                      node_based =

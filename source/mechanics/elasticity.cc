@@ -189,10 +189,17 @@ namespace glide
     TimerOutput::Scope t(timer, "setup");
     mapping = std::make_unique<MappingQ<dim>>(scene.degree);
 
+    // E_max over the deformable bodies (a rigid body's material does not
+    // matter), over all if every body is rigid.
     max_youngs_modulus = 0;
     for (const auto &b : scene.bodies)
-      max_youngs_modulus =
-        std::max(max_youngs_modulus, b.material.youngs_modulus);
+      if (!b.rigid)
+        max_youngs_modulus =
+          std::max(max_youngs_modulus, b.material.youngs_modulus);
+    if (max_youngs_modulus == 0)
+      for (const auto &b : scene.bodies)
+        max_youngs_modulus =
+          std::max(max_youngs_modulus, b.material.youngs_modulus);
 
     if (scene.manufactured_solution != "none")
       {
@@ -219,9 +226,50 @@ namespace glide
     owned = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
 
+    // Meshed rigid bodies: every DoF of their cells (owned and ghost, at its
+    // support point) follows the prescribed rigid motion.
+    for (unsigned int b = 0; b < scene.bodies.size(); ++b)
+      {
+        const auto &body = scene.bodies[b];
+        if (!body.rigid)
+          continue;
+        const std::string path = "Body " + body.name + "/Rigid body";
+        RigidBody         r;
+        r.translation =
+          body.rigid_translation.empty() ?
+            nullptr :
+            parse_function(body.rigid_translation, dim, path + "/Translation");
+        r.rotation = parse_function(body.rigid_rotation, 1, path + "/Rotation");
+        for (unsigned int d = 0; d < dim; ++d)
+          r.center[d] = body.rigid_center[d];
+        const auto &unit_points = fe.get_unit_support_points();
+        std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+        std::set<types::global_dof_index>    seen;
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (!cell->is_artificial() && cell->material_id() == b)
+            {
+              cell->get_dof_indices(dofs);
+              for (unsigned int k = 0; k < dofs.size(); ++k)
+                if (seen.insert(dofs[k]).second)
+                  r.dofs.emplace_back(
+                    dofs[k],
+                    fe.system_to_component_index(k).first,
+                    mapping->transform_unit_to_real_cell(cell, unit_points[k]));
+            }
+        rigid_bodies.push_back(std::move(r));
+      }
+
     for (const auto &bc : scene.boundary_conditions)
       {
         const std::string path = "Boundary condition " + bc.name;
+        for (const auto &name : Utilities::split_string_list(bc.surface, ','))
+          for (const auto &body : scene.bodies)
+            require(!body.rigid || name.rfind(body.name + ".", 0) != 0,
+                    "Parameter '" + path + "/Surface' = '" + name +
+                      "' is a surface of the rigid body '" + body.name +
+                      "'; a rigid body moves only by its 'Rigid body' "
+                      "motion (remove the condition, or set 'Rigid = "
+                      "false').");
         if (bc.type == BoundaryConditionType::force)
           {
             PointForce pf;
@@ -403,6 +451,32 @@ namespace glide
           functions[id] = f;
         VectorTools::interpolate_boundary_values(
           *mapping, dof_handler, functions, c, mask);
+      }
+    for (const auto &r : rigid_bodies)
+      {
+        Tensor<1, dim> T;
+        if (r.translation)
+          {
+            r.translation->set_time(t);
+            Vector<double> v(dim);
+            r.translation->vector_value(Point<dim>(), v);
+            for (unsigned int d = 0; d < dim; ++d)
+              T[d] = v[d];
+          }
+        r.rotation->set_time(t);
+        const double theta = r.rotation->value(Point<dim>());
+        const double cs = std::cos(theta), sn = std::sin(theta);
+        for (const auto &[dof, comp, X] : r.dofs)
+          {
+            if (!c.can_store_line(dof) || c.is_constrained(dof))
+              continue;
+            Tensor<1, dim> a = X - r.center;
+            Tensor<1, dim> x = r.center + T + a;
+            x[0]             = r.center[0] + T[0] + cs * a[0] - sn * a[1];
+            x[1]             = r.center[1] + T[1] + sn * a[0] + cs * a[1];
+            c.add_line(dof);
+            c.set_inhomogeneity(dof, x[comp] - X[comp]);
+          }
       }
     if (axisymmetric)
       {
@@ -806,6 +880,10 @@ namespace glide
                               "small-strain linear elastic") +
                 " bodies (" + scene.analysis_name() + ", Q" +
                 std::to_string(scene.degree) + ")");
+    for (unsigned int b = 0; b < scene.bodies.size(); ++b)
+      if (scene.bodies[b].rigid)
+        e.push_back("meshed rigid body " + scene.bodies[b].name +
+                    " (prescribed rigid motion)");
     if (!dirichlet.empty() || axisymmetric)
       e.push_back(
         "prescribed displacements" +

@@ -148,6 +148,32 @@ namespace glide
                           "Body force per unit reference volume as "
                           "';'-separated components in x, y, (z,) t, e.g. "
                           "'0; -9.81*7850*t'. Empty: none.");
+        prm.enter_subsection("Rigid body");
+        prm.declare_entry(
+          "Rigid",
+          "false",
+          Patterns::Bool(),
+          "true: a meshed rigid body (as Abaqus' *RIGID BODY): every node "
+          "follows the rigid motion below, the material does not matter "
+          "(it does not count for E_max), and its surfaces can be contact "
+          "masters (smoothed like deformable ones). No boundary condition "
+          "may act on it.");
+        prm.declare_entry("Translation",
+                          "",
+                          Patterns::Anything(),
+                          "Translation of the rigid body as ';'-separated "
+                          "components, functions of t. Empty: none.");
+        prm.declare_entry("Rotation",
+                          "0",
+                          Patterns::Anything(),
+                          "Rotation angle (radians, counter-clockwise about "
+                          "z) as a function of t, about 'Rotation center'.");
+        prm.declare_entry("Rotation center",
+                          "",
+                          Patterns::Anything(),
+                          "Center of the rotation (reference "
+                          "configuration), comma-separated. Empty: origin.");
+        prm.leave_subsection();
         prm.leave_subsection();
       }
     for (const auto &c : conditions)
@@ -221,6 +247,24 @@ namespace glide
         body.mesh.axisymmetric = (analysis == AnalysisType::axisymmetric);
         body.material.parse_parameters(prm, path);
         body.body_force = prm.get("Body force");
+        prm.enter_subsection("Rigid body");
+        body.rigid             = prm.get_bool("Rigid");
+        body.rigid_translation = prm.get("Translation");
+        body.rigid_rotation    = prm.get("Rotation");
+        body.rigid_center.assign(dimension, 0.);
+        if (!prm.get("Rotation center").empty())
+          {
+            const auto c =
+              Utilities::split_string_list(prm.get("Rotation center"), ',');
+            require(c.size() == dimension,
+                    "Parameter '" + path +
+                      "/Rigid body/Rotation center' needs " +
+                      std::to_string(dimension) +
+                      " comma-separated coordinates.");
+            for (unsigned int d = 0; d < dimension; ++d)
+              body.rigid_center[d] = Utilities::string_to_double(c[d]);
+          }
+        prm.leave_subsection();
         prm.leave_subsection();
       }
     for (auto &bc : boundary_conditions)
@@ -450,7 +494,11 @@ namespace glide
     apply_overrides(prm, false);
 
     for (const auto &b : bodies)
-      scene.bodies.push_back(BodyParameters{b, {}, {}, {}});
+      {
+        BodyParameters body;
+        body.name = b;
+        scene.bodies.push_back(body);
+      }
     for (const auto &c : conditions)
       {
         scene.boundary_conditions.emplace_back();

@@ -22,6 +22,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace glide
@@ -226,6 +227,20 @@ namespace glide
                                                    nodes;
       std::unique_ptr<dealii::FunctionParser<dim>> function;
     };
+    /// A meshed rigid body: its DoFs (owned and ghost) with their
+    /// component and reference support point, and its motion.
+    struct RigidBody
+    {
+      std::unique_ptr<dealii::FunctionParser<dim>> translation; ///< or null
+      std::unique_ptr<dealii::FunctionParser<dim>> rotation;
+      dealii::Point<dim>                           center;
+      std::vector<std::tuple<dealii::types::global_dof_index,
+                             unsigned int,
+                             dealii::Point<dim>>>
+        dofs;
+    };
+    std::vector<RigidBody> rigid_bodies;
+
     struct PointForce
     {
       std::unique_ptr<dealii::FunctionParser<dim>> function;

@@ -31,6 +31,12 @@ namespace glide
     MaterialParameters material;
     /// Body force per unit reference volume, ';'-separated components.
     std::string body_force;
+    /// Meshed rigid body (P1.4): every node follows the rigid motion
+    /// x = c + T(t) + R_z(theta(t)) (X - c).
+    bool                rigid = false;
+    std::string         rigid_translation; ///< ';'-separated, of t
+    std::string         rigid_rotation;    ///< angle about z, of t
+    std::vector<double> rigid_center;
   };
 
   /**
