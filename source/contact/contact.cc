@@ -65,15 +65,7 @@ namespace glide
   void
   Contact<dim>::setup(const types::global_dof_index first_multiplier)
   {
-    // E_max of the deformable bodies (as in Elasticity).
-    for (const auto &b : scene.bodies)
-      if (!b.rigid)
-        max_youngs_modulus =
-          std::max(max_youngs_modulus, b.material.youngs_modulus);
-    if (max_youngs_modulus == 0)
-      for (const auto &b : scene.bodies)
-        max_youngs_modulus =
-          std::max(max_youngs_modulus, b.material.youngs_modulus);
+    max_youngs_modulus       = elasticity.youngs_modulus_scale();
     clearance                = 1e-10 * elasticity.length_scale();
     const auto &dof_handler  = elasticity.get_dof_handler();
     const auto &fe           = dof_handler.get_fe();

@@ -75,8 +75,9 @@ def main():
     print(f"fitted rates: L2 {rate_l2:.3f} (expected {p + 1}), H1 {rate_h1:.3f} (expected {p}), "
           f"margin {args.margin}")
     ok = rate_l2 >= p + 1 - args.margin and rate_h1 >= p - args.margin
-    # A linear problem must converge in one Newton iteration.
-    ok = ok and all(r[4] == 1 for r in rows)
+    # A linear problem must converge in one Newton iteration, or in none
+    # when the tangent predictor (which then solves it exactly) has run.
+    ok = ok and all(r[4] <= 1 for r in rows)
     print("PASSED" if ok else "FAILED")
     sys.exit(0 if ok else 1)
 

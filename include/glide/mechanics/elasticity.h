@@ -126,6 +126,14 @@ namespace glide
     std::vector<VectorType>
     rigid_body_modes() const;
 
+    /// The largest Young's modulus of the deformable bodies (of all bodies
+    /// if every one is rigid): the stiffness scale of the scene.
+    double
+    youngs_modulus_scale() const
+    {
+      return max_youngs_modulus;
+    }
+
     /// Scaling of residual rows so that the tolerance is unit-free: 1 /
     /// (E_max A_ref), A_ref the mean boundary-face measure.
     double
