@@ -348,6 +348,30 @@ def case_ironing_faceted_short():
     check(abs(rows[-1]["reaction_drive_y"]) > 0.1, f"the die carries {rows[-1]['reaction_drive_y']:.3g}")
 
 
+def case_contact_slip_deformable_master():
+    """CSLIP and CSLIP1 (R12.1, R13.1) with a deformable master: the upper
+    block of tests/scenes/nearly-parallel.prm (top fixed, nu = 0) rests on
+    the lower block, whose bottom rises 0.01 in the first quarter of the
+    load and then slides 0.3 sideways, carrying the master surface with it.
+    Frictionless: the slave nodes stay, so each closed node slips 0.3
+    relative to the master's material points (not to fixed space: a slip
+    measured against the master's old position would be 0). Measured: 0.2997
+    to 0.3020 (the press moves the non-matching master a little sideways);
+    bars: every node closed, CSLIP and CSLIP1 (along t1 = (-1, 0), so
+    positive) within 1 % of 0.3, under 0.003 after the press."""
+    rows, _, out = run(scene("nearly-parallel.prm"), "Output/Write VTU=false",
+                       "Body lower/Material/Poisson's ratio=0", "Body upper/Material/Poisson's ratio=0",
+                       "Body upper/Block/Lower corner=-1.5, 0", "Boundary condition ground/Type=displacement",
+                       "Boundary condition ground/Function=0.3*max(t-0.25,0)/0.75; 0.01*min(t/0.25,1)",
+                       "Boundary condition drive/Type=fixed", name="slide")
+    check(rows[0]["contact_interface_max_slip"] < 0.003, f"slip after the press {rows[0]['contact_interface_max_slip']:.3g}")
+    nodes = contact_nodes(out, "interface")
+    check(len(nodes) == 8 and all(n["CSTATUS"] == 1 for n in nodes), "all 8 slave nodes closed")
+    for n in nodes:
+        close(n["CSLIP"], 0.3, 0.01, f"CSLIP at X={n['X']:.3g}")
+        close(n["CSLIP1"], 0.3, 0.01, f"CSLIP1 at X={n['X']:.3g}")
+
+
 def case_node_based_slave():
     """Issue 3 section 1 (node-based slave surface): the rigid punch with
     the slave given as a node set of the block's 65 top vertices instead of
