@@ -170,7 +170,7 @@ namespace glide
                           "z) as a function of t, about 'Rotation center'.");
         prm.declare_entry("Rotation center",
                           "",
-                          Patterns::Anything(),
+                          Patterns::List(Patterns::Double(), 0, 3),
                           "Center of the rotation (reference "
                           "configuration), comma-separated. Empty: origin.");
         prm.leave_subsection();
