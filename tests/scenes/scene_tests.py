@@ -420,6 +420,50 @@ def case_rigid_punch_meshed():
         check(st["kinsol_iterations"] == m["kinsol_iterations"], f"same iterations at t={t}")
 
 
+def case_rigid_body_rotation():
+    """P1.4 meshed rigid body, rotation: the punch of
+    parameters/rigid-punch-meshed.prm lifted 0.5 and turned by pi/2 about
+    its center (0, 1) (clear of the block, so no contact). In the last
+    VTU every point of the punch (material_id 1) has the displacement of
+    the rigid motion, c + T + R(pi/2) (X - c) - X, to the VTU's single
+    precision (measured 6.7e-8; a wrong sign or axis of the rotation gives
+    differences of order 1); the block does not move."""
+    import vtk
+    from vtk.util.numpy_support import vtk_to_numpy
+    _, _, out = run(scene_file("rigid-punch-meshed.prm"), "Body punch/Rigid body/Translation=0; 0.5*t",
+                    "Body punch/Rigid body/Rotation=pi/2*t", "Body punch/Rigid body/Rotation center=0, 1",
+                    name="turn")
+    files = re.findall(r'file="([^"]+)"', open(os.path.join(out, "turn.pvd")).read())
+    r = vtk.vtkXMLUnstructuredGridReader()
+    r.SetFileName(os.path.join(out, files[-1]))
+    r.Update()
+    grid = r.GetOutput()
+    X = vtk_to_numpy(grid.GetPoints().GetData())
+    u = vtk_to_numpy(grid.GetPointData().GetArray("displacement"))
+    mat = vtk_to_numpy(grid.GetCellData().GetArray("material_id")) if grid.GetCellData().GetArray("material_id") \
+        else vtk_to_numpy(grid.GetPointData().GetArray("material_id"))
+    if len(mat) == grid.GetNumberOfCells():
+        ids = vtk.vtkIdList()
+        punch = set()
+        for c in range(grid.GetNumberOfCells()):
+            if mat[c] == 1:
+                grid.GetCellPoints(c, ids)
+                punch.update(ids.GetId(k) for k in range(ids.GetNumberOfIds()))
+    else:
+        punch = {i for i in range(len(mat)) if mat[i] == 1}
+    check(len(punch) > 10, f"{len(punch)} punch points")
+    worst = 0.0
+    for i in punch:
+        ax, ay = X[i][0] - 0.0, X[i][1] - 1.0
+        ex = 0.0 + 0.0 + (-ay) - X[i][0]
+        ey = 1.0 + 0.5 + ax - X[i][1]
+        worst = max(worst, abs(u[i][0] - ex), abs(u[i][1] - ey))
+    # The VTU holds single-precision numbers: round-off about 1e-7 here.
+    check(worst < 1e-6, f"punch displacement = rigid motion (largest difference {worst:.2e})")
+    rest = [i for i in range(len(X)) if i not in punch]
+    check(max(abs(u[i][0]) + abs(u[i][1]) for i in rest) < 1e-12, "the block does not move")
+
+
 def case_contact_mpi_matches_serial():
     """P7.1 with contact: the rigid punch on two processes gives the serial
     statistics (iterations, contact force, active set) to solver tolerance."""
