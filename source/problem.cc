@@ -98,6 +98,8 @@ namespace glide
     for (unsigned int i = 0; i < effects.size(); ++i)
       pcout << (i ? "; " : "") << effects[i];
     pcout << std::endl;
+    for (const auto &m : contact.take_messages())
+      pcout << "  " << m << std::endl;
 
     // Output goes to <directory>/<scene name>/; only now, after all checks.
     const std::string directory = scene.output.directory + "/" + scene.name;
@@ -301,7 +303,11 @@ namespace glide
               row.emplace_back("reaction_" + surface + "_" + axis[d],
                                format_number(force[d]));
           if (contact.active())
-            contact.update_slip(U, t_old, t);
+            {
+              contact.update_slip(U, t_old, t);
+              for (const auto &m : contact.take_messages())
+                pcout << "  " << m << std::endl;
+            }
           for (const auto &column : contact.statistics(U))
             row.push_back(column);
           if (contact.active())

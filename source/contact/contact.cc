@@ -233,11 +233,14 @@ namespace glide
                           "surfaces of different bodies, or split the "
                           "surface).");
               }
-            for (const auto &node : pair.nodes)
-              pair.previous_projection.push_back(
-                pair.surface->project(node.X, 1.5 * node.size));
+            if (p.sliding != "small")
+              for (const auto &node : pair.nodes)
+                pair.previous_projection.push_back(
+                  pair.surface->project(node.X, 1.5 * node.size));
             pair.coupled.resize(pair.nodes.size());
           }
+        if (p.sliding == "small")
+          setup_small_sliding(pair, path);
         for (const auto &node : pair.nodes)
           pair.previous_position.push_back(node.X);
         pair.slip.assign(pair.nodes.size(), 0.);
@@ -280,7 +283,15 @@ namespace glide
                                                    node.dofs.end());
           if (node.multiplier != numbers::invalid_dof_index)
             idx.push_back(node.multiplier);
-          if (pair.surface)
+          if (pair.small && pair.surface)
+            {
+              // Small sliding: the fixed list of master nodes (R11.3).
+              pair.coupled[i] = pair.anchors[i].list;
+              for (const auto k : pair.coupled[i])
+                for (unsigned int d = 0; d < dim; ++d)
+                  idx.push_back(pair.surface->get_nodes()[k].dofs[d]);
+            }
+          else if (pair.surface)
             {
               // The master nodes within one facet size of the slave node's
               // current position (the surface is at the last iterate, see
@@ -324,7 +335,7 @@ namespace glide
     bool outside = false;
     move_surfaces(U);
     for (const auto &pair : pairs)
-      if (pair.surface)
+      if (pair.surface && !pair.small)
         for (unsigned int i = 0; i < pair.nodes.size() && !outside; ++i)
           {
             const NodeState s = state(pair, pair.nodes[i], U);
@@ -358,8 +369,11 @@ namespace glide
     const auto start = std::chrono::steady_clock::now();
     for (const auto &pair : pairs)
       if (pair.surface)
-        pair.surface->set_displacement(U);
-    searching += std::chrono::steady_clock::now() - start;
+        pair.surface->set_displacement(U, !pair.small);
+    if (std::any_of(pairs.begin(), pairs.end(), [](const Pair &p) {
+          return !p.small;
+        }))
+      searching += std::chrono::steady_clock::now() - start;
   }
 
   template <int dim>
@@ -377,6 +391,7 @@ namespace glide
   void
   Contact<dim>::set_time(const double t)
   {
+    time = t;
     for (auto &pair : pairs)
       if (pair.master)
         pair.master->set_time(t);
@@ -392,7 +407,35 @@ namespace glide
     s.x = node.X;
     for (unsigned int d = 0; d < dim; ++d)
       s.x[d] += U[node.dofs[d]];
-    if (pair.surface)
+    if (pair.small)
+      {
+        // Small sliding: the gap to the node's tangent plane; a node
+        // without an anchor is never in contact (R7.4).
+        const auto &a = pair.anchors[&node - pair.nodes.data()];
+        s.found       = a.found;
+        s.gap         = std::numeric_limits<double>::infinity();
+        if (a.found && pair.surface)
+          {
+            const auto plane = pair.planes->plane(a, s.x);
+            s.gap            = plane.gap;
+            s.normal         = plane.normal;
+            s.anchor         = plane.point;
+          }
+        else if (a.found)
+          {
+            // Analytical rigid master: the plane moves with it, and turns
+            // with it unless sliding is infinitesimal.
+            s.anchor = pair.master->move(a.X0, 0., time);
+            s.normal = a.N0;
+            if (scene.geometric_nonlinearity)
+              {
+                s.normal = pair.master->move(a.X0 + a.N0, 0., time) - s.anchor;
+                s.normal /= s.normal.norm();
+              }
+            s.gap = (s.x - s.anchor) * s.normal;
+          }
+      }
+    else if (pair.surface)
       {
         const auto start = std::chrono::steady_clock::now();
         s.projection     = pair.surface->project(s.x, 1.5 * node.size);
@@ -431,6 +474,14 @@ namespace glide
                           const NodeState                            &s,
                           typename MasterSurface<dim>::Linearization &l) const
   {
+    if (pair.small && pair.surface)
+      {
+        pair.planes->linearize(pair.anchors[&node - pair.nodes.data()],
+                               s.x,
+                               node.dofs,
+                               l);
+        return;
+      }
     if (pair.surface)
       {
         pair.surface->linearize(s.projection, s.x, node.dofs, l);
@@ -449,7 +500,7 @@ namespace glide
         l.dgap(d)  = s.normal[d];
         l.force(d) = s.normal[d];
         for (unsigned int e = 0; e < dim; ++e)
-          l.dforce(d, e) = s.rigid.curvature[d][e];
+          l.dforce(d, e) = pair.small ? 0. : s.rigid.curvature[d][e];
       }
   }
 
@@ -651,6 +702,7 @@ namespace glide
                             const double      t_new)
   {
     move_surfaces(U);
+    std::vector<std::vector<std::string>> slid_too_far(pairs.size());
     for (auto &pair : pairs)
       for (unsigned int i = 0; i < pair.nodes.size(); ++i)
         {
@@ -666,7 +718,30 @@ namespace glide
             for (unsigned int a = 0; a < dim - 1; ++a)
               pair.slip_components[k][a] += relative * tangents[a];
           };
-          if (s.closed && pair.surface)
+          if (pair.small)
+            {
+              // Small sliding: relative to the anchor's material point;
+              // R12.2: warn once per node that moved along its plane
+              // further than its limit from the anchor.
+              if (!pair.anchors[i].found)
+                continue;
+              if (s.closed)
+                accumulate(i,
+                           (s.x - pair.previous_position[i]) -
+                             (s.anchor - pair.previous_anchor[i]));
+              const Tensor<1, dim> r = s.x - s.anchor;
+              const double slide     = (r - (r * s.normal) * s.normal).norm();
+              if (slide > pair.anchors[i].limit && !pair.warned[i])
+                {
+                  pair.warned[i] = true;
+                  std::ostringstream x;
+                  x << "(" << pair.nodes[i].X << ") slid " << slide << " > "
+                    << pair.anchors[i].limit;
+                  slid_too_far[&pair - pairs.data()].push_back(x.str());
+                }
+              pair.previous_anchor[i] = s.anchor;
+            }
+          else if (s.closed && pair.surface)
             {
               // Relative to the master's material point that was under the
               // slave node at the end of the last step (same piece and
@@ -694,9 +769,16 @@ namespace glide
                          (s.x - pair.previous_position[i]) - (y_new - y_old));
             }
           pair.previous_position[i] = s.x;
-          if (pair.surface)
+          if (pair.surface && !pair.small)
             pair.previous_projection[i] = s.projection;
         }
+    for (unsigned int k = 0; k < pairs.size(); ++k)
+      report(slid_too_far[k],
+             "warning: contact pair '" + pairs[k].parameters->name +
+               "': small sliding is not small for ",
+             " slave node(s); they still load the master nodes of their "
+             "anchor (R11.3); use finite sliding (node: slide from anchor > "
+             "limit)");
   }
 
   template <int dim>
@@ -858,9 +940,16 @@ namespace glide
     std::vector<std::string> e;
     for (const auto &pair : pairs)
       {
-        const auto &p = *pair.parameters;
-        e.push_back("contact pair " + p.name +
-                    " (node to surface, finite sliding, " + p.master + ", " +
+        const auto       &p = *pair.parameters;
+        const std::string sliding =
+          !pair.small ? "finite sliding" :
+          scene.geometric_nonlinearity ?
+                        "small sliding" :
+                        "infinitesimal sliding (small sliding in a "
+                        "geometrically linear scene: planes and load-transfer "
+                        "weights fixed)";
+        e.push_back("contact pair " + p.name + " (node to surface, " + sliding +
+                    ", " + p.master + ", " +
                     (p.enforcement == Enforcement::hard ? "hard" : "penalty") +
                     ", " +
                     std::to_string(Utilities::MPI::sum(
@@ -868,6 +957,116 @@ namespace glide
                     " slave nodes)");
       }
     return e;
+  }
+
+  template <int dim>
+  std::vector<std::string>
+  Contact<dim>::take_messages()
+  {
+    std::vector<std::string> m;
+    std::swap(m, messages);
+    return m;
+  }
+
+  template <int dim>
+  void
+  Contact<dim>::report(const std::vector<std::string> &nodes,
+                       const std::string              &before,
+                       const std::string              &after)
+  {
+    const auto all = Utilities::MPI::gather(comm, nodes, 0);
+    if (Utilities::MPI::this_mpi_process(comm) != 0)
+      return;
+    std::vector<std::string> list;
+    for (const auto &part : all)
+      list.insert(list.end(), part.begin(), part.end());
+    if (list.empty())
+      return;
+    std::string text = before + std::to_string(list.size()) + after + ": ";
+    for (unsigned int k = 0; k < list.size() && k < 20; ++k)
+      text += (k ? ", " : "") + list[k];
+    if (list.size() > 20)
+      text += ", ...";
+    messages.push_back(text);
+  }
+
+  template <int dim>
+  void
+  Contact<dim>::setup_small_sliding(Pair &pair, const std::string &path)
+  {
+    const auto &p = *pair.parameters;
+    pair.small    = true;
+    pair.warned.assign(pair.nodes.size(), false);
+    if (pair.surface)
+      {
+        // User normals (R8.1): node sets -> master nodes.
+        std::map<types::global_dof_index, unsigned int> master_node;
+        const auto &master_nodes = pair.surface->get_nodes();
+        for (unsigned int k = 0; k < master_nodes.size(); ++k)
+          master_node[master_nodes[k].dofs[0]] = k;
+        std::map<unsigned int, Tensor<1, dim>> user;
+        for (const auto &[set, direction] : p.master_normals)
+          {
+            Tensor<1, dim> n;
+            for (unsigned int d = 0; d < dim; ++d)
+              n[d] = direction[d];
+            unsigned int matched = 0;
+            for (const auto &[dofs, X] :
+                 elasticity.find_nodes(set, path + "/Master normals", false))
+              {
+                const auto it = master_node.find(dofs[0]);
+                if (it == master_node.end())
+                  continue;
+                user[it->second] = n;
+                ++matched;
+              }
+            require(Utilities::MPI::max(matched, comm) > 0,
+                    "Parameter '" + path + "/Master normals': the node set '" +
+                      set + "' has no node on the master surface '" + p.master +
+                      "'.");
+          }
+        pair.planes =
+          std::make_unique<SmallSliding<dim>>(*pair.surface,
+                                              user,
+                                              !scene.geometric_nonlinearity,
+                                              scene.analysis ==
+                                                AnalysisType::axisymmetric);
+        for (const auto &node : pair.nodes)
+          pair.anchors.push_back(pair.planes->anchor(node.X));
+      }
+    else
+      {
+        // Analytical rigid master: the closest point and its normal at the
+        // start.
+        pair.master->set_time(0.);
+        for (const auto &node : pair.nodes)
+          {
+            typename SmallSliding<dim>::Anchor a;
+            const auto projection = pair.master->project(node.X);
+            a.found               = true;
+            a.X0                  = projection.closest_point;
+            a.N0                  = projection.normal;
+            a.limit               = std::numeric_limits<double>::infinity();
+            pair.anchors.push_back(a);
+          }
+      }
+    std::vector<std::string> unanchored;
+    for (unsigned int i = 0; i < pair.nodes.size(); ++i)
+      {
+        pair.previous_anchor.push_back(pair.anchors[i].X0);
+        if (!pair.anchors[i].found)
+          {
+            std::ostringstream x;
+            x << "(" << pair.nodes[i].X << ")";
+            unanchored.push_back(x.str());
+          }
+      }
+    report(unanchored,
+           "note: contact pair '" + p.name + "': ",
+           " slave node(s) found no anchor on the master (no master normal "
+           "passes through them, R7.4); they are not constrained and may "
+           "penetrate (check the master normals, 'Master normals', or "
+           "symmetry conditions at the master's ends)");
   }
 
   template class Contact<2>;

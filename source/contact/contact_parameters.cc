@@ -56,11 +56,26 @@ namespace glide
       Patterns::Selection("node to surface"),
       "Contact discretization: node to surface (one constraint per "
       "slave node).");
-    prm.declare_entry("Sliding",
-                      "finite",
-                      Patterns::Selection("finite"),
-                      "finite: the projection onto the master is updated every "
-                      "iteration (also in geometrically linear scenes, R4.1).");
+    prm.declare_entry(
+      "Sliding",
+      "finite",
+      Patterns::Selection("finite|small"),
+      "finite: the projection onto the master is updated every iteration "
+      "(also in geometrically linear scenes, R4.1). small: each slave node "
+      "is tied once, before the first step, to a tangent plane of the master "
+      "through its anchor point and loads a fixed list of master nodes "
+      "(R6-R12); in a geometrically linear scene this is infinitesimal "
+      "sliding (plane and weights never change). Cheaper, but only right "
+      "while every slave node stays within about one master facet of its "
+      "anchor (the log warns when one does not).");
+    prm.declare_entry(
+      "Master normals",
+      "",
+      Patterns::Anything(),
+      "Small sliding: nodal normals of the master prescribed by the user "
+      "(R8.1), replacing the averaged ones at the nodes of a node set (or "
+      "surface): '<node set>: nx, ny[, nz]', several separated by ';', "
+      "e.g. 'edge: 0, 1'. Empty: none.");
     prm.declare_entry(
       "Smoothing fraction",
       "0.2",
@@ -146,7 +161,40 @@ namespace glide
                                                            Enforcement::penalty;
     penalty_stiffness = prm.get_double("Penalty stiffness");
     symmetrized       = prm.get("Linearization") == "symmetrized";
-
+    master_normals.clear();
+    for (const auto &entry :
+         Utilities::split_string_list(prm.get("Master normals"), ';'))
+      {
+        const auto colon = entry.find(':');
+        require(colon != std::string::npos,
+                "Parameter '" + path + "/Master normals' = '" +
+                  prm.get("Master normals") + "': the entry '" + entry +
+                  "' is not of the form '<node set>: nx, ny" +
+                  (dim == 3 ? ", nz" : "") + "'.");
+        const std::string   set = Utilities::trim(entry.substr(0, colon));
+        std::vector<double> n;
+        try
+          {
+            n = Utilities::string_to_double(
+              Utilities::split_string_list(entry.substr(colon + 1)));
+          }
+        catch (...)
+          {
+            n.clear();
+          }
+        double length = 0.;
+        for (const double x : n)
+          length += x * x;
+        require(n.size() == dim && length > 0.,
+                "Parameter '" + path + "/Master normals': the normal of '" +
+                  set + "' needs " + std::to_string(dim) +
+                  " comma-separated numbers, not all zero.");
+        master_normals.emplace_back(set, n);
+      }
+    require(master_normals.empty() || sliding == "small",
+            "Parameter '" + path +
+              "/Master normals' applies to small sliding only; set "
+              "'Sliding = small' or remove it.");
     require(!slave.empty(),
             "Parameter '" + path +
               "/Slave' is empty; name the slave surface as <body>.<surface>.");

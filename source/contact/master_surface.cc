@@ -1,3 +1,4 @@
+#include <glide/contact/facet_basis.h>
 #include <glide/contact/master_surface.h>
 #include <glide/scene/input_error.h>
 
@@ -48,29 +49,6 @@ namespace glide
       const T length = sqrt(dot(a, a));
       for (auto &x : a)
         x /= length;
-    }
-
-    /// 1D Lagrange basis of degree p (1 or 2) on [0, 1], nodes equispaced.
-    template <typename T>
-    void
-    lagrange(const unsigned int p, const T &s, T *N, T *dN)
-    {
-      if (p == 1)
-        {
-          N[0]  = 1. - s;
-          N[1]  = s;
-          dN[0] = -1.;
-          dN[1] = 1.;
-        }
-      else
-        {
-          N[0]  = (2. * s - 3.) * s + 1.;
-          N[1]  = 4. * s * (1. - s);
-          N[2]  = (2. * s - 1.) * s;
-          dN[0] = 4. * s - 3.;
-          dN[1] = 4. - 8. * s;
-          dN[2] = 4. * s - 1.;
-        }
     }
 
     /// Cubic Hermite basis h00, h10, h01, h11 and derivatives.
@@ -520,11 +498,13 @@ namespace glide
 
   template <int dim>
   void
-  MasterSurface<dim>::set_displacement(const VectorType &U)
+  MasterSurface<dim>::set_displacement(const VectorType &U, const bool search)
   {
     for (unsigned int k = 0; k < nodes.size(); ++k)
       for (unsigned int d = 0; d < dim; ++d)
         x[k][d] = nodes[k].X[d] + (U.size() > 0 ? U[nodes[k].dofs[d]] : 0.);
+    if (!search)
+      return;
     std::vector<Leaf> boxes;
     boxes.reserve(pieces.size());
     for (unsigned int i = 0; i < pieces.size(); ++i)

@@ -315,6 +315,29 @@ namespace glide
           throw InputError("Body '" + body_name +
                            "': 'Mesh = half ring' is available in 2D only.");
       }
+    else if (m.type == "quarter ring")
+      {
+        if constexpr (dim == 2)
+          {
+            GridGenerator::quarter_hyper_shell(
+              tria, c, m.inner_radius, m.radius, 3);
+            label_round_boundary<dim>(tria,
+                                      c,
+                                      {{m.inner_radius, 0}, {m.radius, 1}},
+                                      {{0, 2}, {1, 3}},
+                                      m.length,
+                                      true);
+            tria.set_all_manifold_ids(0);
+            tria.set_manifold(0, SphericalManifold<2>(c));
+            names[0] = "inner";
+            names[1] = "outer";
+            names[2] = "x0";
+            names[3] = "y0";
+          }
+        else
+          throw InputError("Body '" + body_name +
+                           "': 'Mesh = quarter ring' is available in 2D only.");
+      }
     else if (m.type == "ring")
       {
         if constexpr (dim == 2)

@@ -65,7 +65,7 @@ namespace glide
   std::string
   MeshParameters::builder_names()
   {
-    return "block|cylinder|half cylinder|hertz|ring|half ring|sphere octant|file";
+    return "block|cylinder|half cylinder|hertz|ring|half ring|quarter ring|sphere octant|file";
   }
 
   void
@@ -88,7 +88,10 @@ namespace glide
       "ring: annulus/tube between 'Inner "
       "radius' and 'Radius' (surfaces inner, outer). half ring (2D): the "
       "lower half of that annulus, flat ends up (surfaces inner, outer, "
-      "ends), e.g. the die of the ironing problem. sphere octant: quarter "
+      "ends), e.g. the die of the ironing problem. quarter ring (2D): the "
+      "quarter x, y >= Center of that annulus, 3 cells around before "
+      "refinement (surfaces inner, outer, x0, y0), e.g. a quarter model of "
+      "concentric cylinders. sphere octant: quarter "
       "disk (2D; a sphere in an axisymmetric scene) or sphere octant (3D) "
       "with x, y (, z) >= Center (surfaces: curved, x0, y0 (, z0)). file: "
       "read 'Mesh file'.");
@@ -225,7 +228,7 @@ namespace glide
 
     require(radius > 0.,
             "Parameter '" + path + "/Round shapes/Radius' must be > 0.");
-    if (type == "ring" || type == "half ring")
+    if (type == "ring" || type == "half ring" || type == "quarter ring")
       require(inner_radius > 0. && inner_radius < radius,
               "Parameter '" + path +
                 "/Round shapes/Inner radius' must satisfy 0 < Inner radius "
@@ -237,9 +240,9 @@ namespace glide
                               const std::string &path) const
   {
     const MeshParameters &m = *this;
-    require(m.type != "half ring" || dim == 2,
-            "Parameter '" + path +
-              "/Mesh' = 'half ring' is available in 2D only.");
+    require((m.type != "half ring" && m.type != "quarter ring") || dim == 2,
+            "Parameter '" + path + "/Mesh' = '" + m.type +
+              "' is available in 2D only.");
     require_size(m.lower_corner, dim, path + "/Block/Lower corner");
     require_size(m.upper_corner, dim, path + "/Block/Upper corner");
     require(m.subdivisions.size() == dim,

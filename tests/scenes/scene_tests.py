@@ -659,6 +659,73 @@ def contact_nodes(out, pair):
         return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
 
 
+def last_vtu(out, name):
+    """Points and displacements of the last VTU of run `name` in `out`."""
+    import vtk
+    from vtk.util.numpy_support import vtk_to_numpy
+    files = re.findall(r'file="([^"]+)"', open(os.path.join(out, f"{name}.pvd")).read())
+    r = vtk.vtkXMLUnstructuredGridReader()
+    r.SetFileName(os.path.join(out, files[-1]))
+    r.Update()
+    grid = r.GetOutput()
+    return (vtk_to_numpy(grid.GetPoints().GetData()),
+            vtk_to_numpy(grid.GetPointData().GetArray("displacement")))
+
+
+def case_concentric_cylinders_anchors():
+    """Issue 4, R7.4, R8.1, R8.2, R8.3: parameters/concentric-cylinders.prm,
+    a quarter model of a ring (slave, inner radius 1.005) pressed onto a
+    disk (master, radius 1) by an outer pressure of 20, small sliding in a
+    geometrically linear scene (infinitesimal sliding).
+    (1) As shipped, the disk carries XSYMM/YSYMM, so the nodal normals of
+    the master's perimeter nodes (0, 1) and (1, 0) lie in the symmetry
+    planes (R8.2): every slave node is anchored (the log reports none
+    missing), closed, with COPEN = 0, and the pressure is within 3 % of
+    Lame's shrink-fit value 18.508 (plane strain, exact for the round
+    bodies; measured 18.15 to 18.24 on this coarse faceted mesh).
+    (2) The disk held by its center instead of XSYMM on x = 0: the master
+    node (0, 1) keeps its plain averaged normal, tilted away from the plane
+    by half a facet angle, so no master normal passes through the slave
+    node (0, 1.005) (R8.3): the log names it (R7.4), it carries no force and
+    penetrates the disk (its final y is below that of the master node
+    (0, 1), read from the VTU).
+    (3) As (2) with a user normal (0, 1) at that master node (R8.1): the
+    node is anchored again, closed and on the master."""
+    cc = scene_file("concentric-cylinders.prm")
+    lame = 18.508
+    rows, log, out = run(cc, "Output/Write VTU=false")
+    check("infinitesimal sliding" in log, "the log says infinitesimal sliding")
+    check("found no anchor" not in log, "every slave node anchored")
+    nodes = contact_nodes(out, "fit")
+    check(len(nodes) == 13 and all(n["CSTATUS"] == 1 for n in nodes), f"all {len(nodes)} slave nodes closed")
+    check(max(abs(n["COPEN"]) for n in nodes) < 1e-8, "COPEN = 0")
+    for n in nodes:
+        close(n["CPRESS"], lame, 0.03, f"CPRESS at ({n['X']:.3f}, {n['Y']:.3f}) against Lame")
+    for r in rows:
+        check(r["kinsol_iterations"] <= 3, f"{int(r['kinsol_iterations'])} iterations at t={r['load_factor']}")
+
+    def on_plane(nodes):
+        return [n for n in nodes if abs(n["X"]) < 1e-12 and abs(n["Y"] - 1.005) < 1e-12][0]
+
+    _, log, out = run(cc, "Boundary condition inner_x/Surface=center", name="averaged")
+    check("1 slave node(s) found no anchor" in log and "(0 1.005)" in log, "the log names the unanchored node")
+    n = on_plane(contact_nodes(out, "fit"))
+    check(n["CSTATUS"] == 0 and n["force"] == 0, "the unanchored node carries no force")
+    X, u = last_vtu(out, "averaged")
+    k = [i for i in range(len(X)) if abs(X[i][0]) < 1e-6 and abs(X[i][1] - 1) < 1e-6][0]
+    penetration = (1 + u[k][1]) - n["y"]
+    check(penetration > 1e-3, f"the unanchored node penetrates the disk by {penetration:.4g}")
+
+    _, log, out = run(cc, "Boundary condition inner_x/Surface=center",
+                      "Contact pair fit/Master normals=top_master: 0, 1", name="user")
+    check("found no anchor" not in log, "a user normal anchors it")
+    n = on_plane(contact_nodes(out, "fit"))
+    check(n["CSTATUS"] == 1 and abs(n["COPEN"]) < 1e-8 and n["force"] > 0, "closed on the master, pushing")
+    X, u = last_vtu(out, "user")
+    k = [i for i in range(len(X)) if abs(X[i][0]) < 1e-6 and abs(X[i][1] - 1) < 1e-6][0]
+    check(n["y"] - (1 + u[k][1]) > -1e-6, f"no penetration at the plane ({n['y'] - (1 + u[k][1]):.2g})")
+
+
 def case_hertz_2d_deformable_master():
     """Issue 3 (deformable master, R1.1, R4.1): Hertz line contact between
     an elastic cylinder (slave) and an elastic block (master, its faceted

@@ -2,6 +2,7 @@
 
 #include <glide/contact/master_surface.h>
 #include <glide/contact/rigid_master.h>
+#include <glide/contact/small_sliding.h>
 #include <glide/mechanics/elasticity.h>
 
 #include <deal.II/base/index_set.h>
@@ -151,6 +152,21 @@ namespace glide
     std::vector<std::string>
     active_effects() const;
 
+    /// Notes and warnings for the log since the last call (slave nodes
+    /// without an anchor after setup(), R7.4; nodes that slid further than
+    /// small sliding allows after update_slip(), R12.2); empty on all but
+    /// the first process.
+    std::vector<std::string>
+    take_messages();
+
+    /// Small-sliding anchors of pair @p pair's locally owned slave nodes
+    /// (for tests).
+    const std::vector<typename SmallSliding<dim>::Anchor> &
+    anchors(const unsigned int pair) const
+    {
+      return pairs[pair].anchors;
+    }
+
   private:
     struct SlaveNode
     {
@@ -168,6 +184,13 @@ namespace glide
       const ContactPairParameters        *parameters;
       std::unique_ptr<RigidMaster<dim>>   master;  ///< analytical rigid
       std::unique_ptr<MasterSurface<dim>> surface; ///< deformable body
+      /// Small sliding (R6): the anchors and tangent planes, per node (for
+      /// analytical rigid masters only X0 and N0 are used).
+      bool                                            small = false;
+      std::unique_ptr<SmallSliding<dim>>              planes;
+      std::vector<typename SmallSliding<dim>::Anchor> anchors;
+      std::vector<dealii::Point<dim>>                 previous_anchor;
+      std::vector<bool>                               warned;
       /// Per node: master nodes coupled in the sparsity pattern (sorted),
       /// and the projection at the end of the last converged step.
       std::vector<std::vector<unsigned int>>               coupled;
@@ -197,8 +220,9 @@ namespace glide
       bool                                    found = true;
       typename RigidMaster<dim>::Projection   rigid;
       typename MasterSurface<dim>::Projection projection;
-      double                                  lambda = 0.; ///< normal force
-      bool                                    closed = false;
+      dealii::Point<dim> anchor;      ///< small sliding: current anchor point
+      double             lambda = 0.; ///< normal force
+      bool               closed = false;
     };
     /// State of a slave node at iterate U (deformable masters must have
     /// been moved to U with set_displacement()).
@@ -217,6 +241,16 @@ namespace glide
     double
     current_displacement(const dealii::types::global_dof_index i) const;
 
+    /// Anchors and tangent planes of a small-sliding pair (R6-R8).
+    void
+    setup_small_sliding(Pair &pair, const std::string &path);
+
+    /// Add a log message listing @p nodes (gathered from all processes).
+    void
+    report(const std::vector<std::string> &nodes,
+           const std::string              &before,
+           const std::string              &after);
+
     /// Move the deformable masters to iterate @p U.
     void
     move_surfaces(const VectorType &U) const;
@@ -227,6 +261,8 @@ namespace glide
     std::vector<Pair>                     pairs;
     VectorType                            last_displacement;
     mutable std::chrono::duration<double> searching{0.};
+    double                                time = 0.; ///< load factor
+    std::vector<std::string>              messages;
     dealii::IndexSet                      multipliers;
     dealii::types::global_dof_index       total_multipliers  = 0;
     double                                max_youngs_modulus = 0.;

@@ -52,6 +52,8 @@ namespace glide
     /// Penalty stiffness (stress per length); 0: 1000 E_max / h.
     double penalty_stiffness = 0.;
     bool   symmetrized       = false;
+    /// Small sliding: user normals at master nodes (R8.1), per node set.
+    std::vector<std::pair<std::string, std::vector<double>>> master_normals;
 
     static void
     declare_parameters(dealii::ParameterHandler &prm);

@@ -143,10 +143,11 @@ namespace glide
                   const double                                fraction,
                   const std::string                          &path);
 
-    /// Current positions x = X + u (U: displacement first), and the search
-    /// tree of the pieces' bounding boxes.
+    /// Current positions x = X + u (U: displacement first), and, if
+    /// @p search, the search tree of the pieces' bounding boxes (small
+    /// sliding never searches, R6.2).
     void
-    set_displacement(const VectorType &U);
+    set_displacement(const VectorType &U, const bool search = true);
 
     /// Projection of the slave point @p x onto the pieces within 1.5 times
     /// the largest facet of it, or, where that finds none, within
@@ -188,6 +189,18 @@ namespace glide
     get_facets() const
     {
       return facets;
+    }
+    /// Current node positions (set_displacement()).
+    const std::vector<dealii::Point<dim>> &
+    get_positions() const
+    {
+      return x;
+    }
+    /// Per node and component: does it carry XSYMM/YSYMM/ZSYMM?
+    const std::vector<std::array<bool, dim>> &
+    get_symmetry_flags() const
+    {
+      return on_symmetry_plane;
     }
     const std::vector<Piece> &
     get_pieces() const

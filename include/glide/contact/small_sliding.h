@@ -1,0 +1,160 @@
+#pragma once
+
+#include <glide/contact/master_surface.h>
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/numerics/rtree.h>
+
+#include <array>
+#include <map>
+#include <vector>
+
+namespace glide
+{
+  /**
+   * Small-sliding node-to-surface contact against the master surface of a
+   * deformable (or meshed rigid) body (issue 4; R6-R8, R10-R12; equations
+   * in doc/theory/small-sliding.md).
+   *
+   * Nodal normals of the master are the normalized mean of the normals of
+   * the master facets at each node, in the initial configuration (R7.1);
+   * at perimeter nodes with XSYMM/YSYMM/ZSYMM (or on the axis of an
+   * axisymmetric scene) the component normal to the symmetry plane is
+   * removed (R8.2); user normals replace both (R8.1). On a facet the
+   * smooth normal field N(xi) interpolates the nodal normals with the
+   * facet's shape functions (R7.2). The anchor X0 of a slave node is the
+   * facet point whose N(X0) passes through the node, found once before the
+   * first step (R7.3); the tangent plane through X0 is normal to N0 =
+   * N(X0).
+   *
+   * Finite rotations (small sliding, R6.1, R10.1): the anchor keeps its
+   * parameters xi0 in its facet, x0 = sum_j N_j(xi0) x_j, and the plane
+   * normal keeps its components in the facet's orthonormal frame at xi0
+   * (e1 along the first tangent, e_n the facet normal), so it moves and
+   * rotates with the facet. The gap is g = (x_s - x0) . n. The load goes
+   * to the fixed node list of R11.1 (the anchor facet's nodes; at a master
+   * node, that node and all nodes of the facets around it), shared by the
+   * facet's shape functions at the parameters of the slave node's
+   * projection onto the plane (its centre of action, R11.2), clamped to the
+   * facet, so the list never grows (R11.3). The Jacobian is the exact
+   * derivative of this residual (automatic differentiation).
+   *
+   * Infinitesimal sliding (geometrically linear scenes, R6.3): the plane
+   * and the weights w0 are those of the initial configuration and never
+   * change: g = (x_s - X0 - sum_j w0_j u_j) . N0, a linear constraint
+   * whose force vector (N0 at the slave, -w0_j N0 at the master nodes) is
+   * its gradient.
+   */
+  template <int dim>
+  class SmallSliding
+  {
+  public:
+    using Xi            = std::array<double, dim - 1>;
+    using Linearization = typename MasterSurface<dim>::Linearization;
+
+    struct Anchor
+    {
+      bool         found = false;
+      unsigned int facet = 0;  ///< facet that holds X0
+      Xi           xi    = {}; ///< parameters of X0 in it
+      int          node  = -1; ///< master node where X0 is at a node
+      /// Fixed master nodes of the constraint (sorted) and the facets whose
+      /// shape functions share the load (the anchor facet first).
+      std::vector<unsigned int> list;
+      std::vector<unsigned int> facets;
+      dealii::Point<dim>        X0;
+      dealii::Tensor<1, dim>    N0;
+      /// N0 in the anchor facet's orthonormal frame at xi (reference).
+      std::array<double, dim> frame = {};
+      /// Load-transfer weights over `list` in the initial configuration
+      /// (used throughout in infinitesimal sliding).
+      std::vector<double> weights;
+      /// Distance along the plane from the anchor beyond which the slide is
+      /// reported as not small (R12.2).
+      double limit = 0.;
+    };
+
+    /// @p user_normals: master node index -> prescribed normal (R8.1).
+    SmallSliding(
+      const MasterSurface<dim>                             &surface,
+      const std::map<unsigned int, dealii::Tensor<1, dim>> &user_normals,
+      const bool                                            infinitesimal,
+      const bool                                            axisymmetric);
+
+    /// Anchor of the slave node at reference position @p X (R7.3); not
+    /// found if no N(x) of the master passes through it.
+    Anchor
+    anchor(const dealii::Point<dim> &X) const;
+
+    /// Nodal normals of the master (R7.1, R8).
+    const std::vector<dealii::Tensor<1, dim>> &
+    nodal_normals() const
+    {
+      return normals;
+    }
+
+    /// The smooth normal field N(xi) on facet @p facet (R7.2).
+    dealii::Tensor<1, dim>
+    normal_field(const unsigned int facet, const Xi &xi) const;
+
+    /// Current anchor point, plane normal and gap of a slave node at @p x
+    /// (master at its current positions).
+    struct Plane
+    {
+      dealii::Point<dim>     point;
+      dealii::Tensor<1, dim> normal;
+      double                 gap = 0.;
+    };
+    Plane
+    plane(const Anchor &a, const dealii::Point<dim> &x) const;
+
+    /// Current load-transfer weights over `a.list` for a slave node at @p x
+    /// (R11.2).
+    std::vector<double>
+    weights(const Anchor &a, const dealii::Point<dim> &x) const;
+
+    /// Gap and force vector with their derivatives (slave DoFs first, then
+    /// the list's master nodes).
+    void
+    linearize(
+      const Anchor                                           &a,
+      const dealii::Point<dim>                               &x,
+      const std::array<dealii::types::global_dof_index, dim> &slave_dofs,
+      Linearization                                          &l) const;
+
+    bool
+    is_infinitesimal() const
+    {
+      return infinitesimal;
+    }
+
+  private:
+    /// Gap, plane normal, anchor point and weights over the list for the
+    /// slave point @p xs with master node positions @p pos.
+    template <typename T, typename Positions>
+    void
+    evaluate(const Anchor             &a,
+             const std::array<T, dim> &xs,
+             const Positions          &pos,
+             const bool                fixed_plane,
+             T                        &gap,
+             std::array<T, dim>       &n,
+             std::array<T, dim>       &x0,
+             std::vector<T>           &w) const;
+
+    /// Newton for the anchor on facet @p facet; false if none there.
+    bool
+    anchor_on(const unsigned int        facet,
+              const dealii::Point<dim> &X,
+              Xi                       &xi,
+              double                   &distance) const;
+
+    const MasterSurface<dim>              &surface;
+    const bool                             infinitesimal;
+    std::vector<dealii::Tensor<1, dim>>    normals;
+    std::vector<std::vector<unsigned int>> node_facets;
+    using Leaf = std::pair<dealii::BoundingBox<dim>, unsigned int>;
+    dealii::RTree<Leaf> tree; ///< facets, initial configuration
+  };
+} // namespace glide

@@ -1,0 +1,687 @@
+#include <glide/contact/facet_basis.h>
+#include <glide/contact/small_sliding.h>
+
+#include <Sacado.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace glide
+{
+  using namespace dealii;
+
+  namespace
+  {
+    using Fad = Sacado::Fad::DFad<double>;
+
+    double
+    value_of(const double x)
+    {
+      return x;
+    }
+    double
+    value_of(const Fad &x)
+    {
+      return x.val();
+    }
+
+    template <typename T, int dim>
+    T
+    dot(const std::array<T, dim> &a, const std::array<T, dim> &b)
+    {
+      T s = a[0] * b[0];
+      for (int i = 1; i < dim; ++i)
+        s += a[i] * b[i];
+      return s;
+    }
+
+    /// Orthonormal frame of a facet from its tangents a: e_0 along a_0,
+    /// e_{dim-1} the outward normal ((a_y, -a_x) in 2D, a_0 x a_1 in 3D).
+    template <typename T, int dim>
+    std::array<std::array<T, dim>, dim>
+    facet_frame(const std::array<std::array<T, dim>, dim - 1> &a)
+    {
+      using std::sqrt;
+      std::array<std::array<T, dim>, dim> e;
+      const T                             l0 = sqrt(dot<T, dim>(a[0], a[0]));
+      for (int d = 0; d < dim; ++d)
+        e[0][d] = a[0][d] / l0;
+      if constexpr (dim == 2)
+        {
+          e[1][0] = e[0][1];
+          e[1][1] = -e[0][0];
+        }
+      else
+        {
+          std::array<T, 3> c;
+          c[0]       = a[0][1] * a[1][2] - a[0][2] * a[1][1];
+          c[1]       = a[0][2] * a[1][0] - a[0][0] * a[1][2];
+          c[2]       = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+          const T lc = sqrt(dot<T, 3>(c, c));
+          for (int d = 0; d < 3; ++d)
+            e[2][d] = c[d] / lc;
+          e[1][0] = e[2][1] * e[0][2] - e[2][2] * e[0][1];
+          e[1][1] = e[2][2] * e[0][0] - e[2][0] * e[0][2];
+          e[1][2] = e[2][0] * e[0][1] - e[2][1] * e[0][0];
+        }
+      return e;
+    }
+
+    /// Solve the (dim-1)x(dim-1) system G d = r.
+    template <typename T, int n>
+    std::array<T, n>
+    solve_small(const std::array<std::array<T, n>, n> &G,
+                const std::array<T, n>                &r)
+    {
+      std::array<T, n> d;
+      if constexpr (n == 1)
+        d[0] = r[0] / G[0][0];
+      else
+        {
+          const T det = G[0][0] * G[1][1] - G[0][1] * G[1][0];
+          d[0]        = (G[1][1] * r[0] - G[0][1] * r[1]) / det;
+          d[1]        = (G[0][0] * r[1] - G[1][0] * r[0]) / det;
+        }
+      return d;
+    }
+  } // namespace
+
+  template <int dim>
+  SmallSliding<dim>::SmallSliding(
+    const MasterSurface<dim>                     &surface,
+    const std::map<unsigned int, Tensor<1, dim>> &user_normals,
+    const bool                                    infinitesimal,
+    const bool                                    axisymmetric)
+    : surface(surface)
+    , infinitesimal(infinitesimal)
+  {
+    const auto        &nodes  = surface.get_nodes();
+    const auto        &facets = surface.get_facets();
+    const unsigned int p      = surface.degree();
+
+    // R7.1: the mean of the normals of the master facets at each node
+    // (each facet's normal evaluated at that node), initial coordinates.
+    normals.assign(nodes.size(), Tensor<1, dim>());
+    node_facets.assign(nodes.size(), {});
+    std::vector<double>                      N;
+    std::vector<std::array<double, dim - 1>> dN;
+    for (unsigned int f = 0; f < facets.size(); ++f)
+      {
+        const auto &facet = facets[f];
+        for (unsigned int k = 0; k < facet.nodes.size(); ++k)
+          {
+            node_facets[facet.nodes[k]].push_back(f);
+            Xi xi;
+            xi[0] = double(k % (p + 1)) / p;
+            if (dim == 3)
+              xi[dim - 2] = double(k / (p + 1)) / p;
+            facet_basis<dim, double>(p, xi, N, dN);
+            std::array<std::array<double, dim>, dim - 1> a{};
+            for (unsigned int j = 0; j < facet.nodes.size(); ++j)
+              for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
+                for (unsigned int d = 0; d < dim; ++d)
+                  a[alpha][d] += dN[j][alpha] * nodes[facet.nodes[j]].X[d];
+            const auto e = facet_frame<double, dim>(a);
+            for (unsigned int d = 0; d < dim; ++d)
+              normals[facet.nodes[k]][d] += e[dim - 1][d];
+          }
+      }
+    for (auto &n : normals)
+      n /= n.norm();
+
+    // R8.2: perimeter nodes on a symmetry plane (or on the axis of an
+    // axisymmetric scene) get normals in that plane.
+    const auto  &symmetric = surface.get_symmetry_flags();
+    const double tolerance = 1e-10 * std::max(1., surface.facet_size());
+    std::set<unsigned int> perimeter;
+    for (const auto &facet : facets)
+      for (unsigned int side = 0; side < facet.neighbours.size(); ++side)
+        if (facet.neighbours[side] < 0)
+          for (unsigned int k = 0; k < facet.nodes.size(); ++k)
+            {
+              const unsigned int i = k % (p + 1), j = k / (p + 1);
+              const bool on_side = dim == 2 ? (side == 0 ? i == 0 : i == p) :
+                                              (side == 0 ? i == 0 :
+                                               side == 1 ? i == p :
+                                               side == 2 ? j == 0 :
+                                                           j == p);
+              if (on_side)
+                perimeter.insert(facet.nodes[k]);
+            }
+    for (const auto k : perimeter)
+      {
+        Tensor<1, dim> n = normals[k];
+        for (unsigned int c = 0; c < dim; ++c)
+          if ((!symmetric.empty() && symmetric[k][c]) ||
+              (axisymmetric && c == 0 && std::abs(nodes[k].X[0]) < tolerance))
+            n[c] = 0.;
+        if (n.norm() > 1e-12)
+          normals[k] = n / n.norm();
+      }
+
+    // R8.1: user normals replace the computed ones.
+    for (const auto &[k, n] : user_normals)
+      normals[k] = n / n.norm();
+
+    // Search tree of the facets in the initial configuration, for the
+    // anchors.
+    std::vector<Leaf> boxes;
+    for (unsigned int f = 0; f < facets.size(); ++f)
+      {
+        Point<dim> lo = nodes[facets[f].nodes[0]].X, hi = lo;
+        for (const auto k : facets[f].nodes)
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              lo[d] = std::min(lo[d], nodes[k].X[d]);
+              hi[d] = std::max(hi[d], nodes[k].X[d]);
+            }
+        boxes.emplace_back(BoundingBox<dim>(std::make_pair(lo, hi)), f);
+      }
+    tree = pack_rtree(boxes);
+  }
+
+  template <int dim>
+  Tensor<1, dim>
+  SmallSliding<dim>::normal_field(const unsigned int facet, const Xi &xi) const
+  {
+    std::vector<double>                      N;
+    std::vector<std::array<double, dim - 1>> dN;
+    facet_basis<dim, double>(surface.degree(), xi, N, dN);
+    Tensor<1, dim> n;
+    for (unsigned int j = 0; j < N.size(); ++j)
+      n += N[j] * normals[surface.get_facets()[facet].nodes[j]];
+    return n / n.norm();
+  }
+
+  template <int dim>
+  bool
+  SmallSliding<dim>::anchor_on(const unsigned int facet,
+                               const Point<dim>  &X,
+                               Xi                &xi,
+                               double            &distance) const
+  {
+    const auto        &nodes = surface.get_nodes();
+    const auto        &F     = surface.get_facets()[facet];
+    const unsigned int p     = surface.degree();
+    double             size  = 0.;
+    for (const auto i : F.nodes)
+      for (const auto j : F.nodes)
+        size = std::max(size, nodes[i].X.distance(nodes[j].X));
+
+    // (r - (r.N) N) . A_alpha = 0 with r = X - X(xi): the line along N(xi)
+    // passes through X. Newton, derivatives by automatic differentiation.
+    xi.fill(0.5);
+    bool                                  converged = false;
+    std::vector<Fad>                      N;
+    std::vector<std::array<Fad, dim - 1>> dN;
+    for (unsigned int it = 0; it < 50 && !converged; ++it)
+      {
+        std::array<Fad, dim - 1> s;
+        for (unsigned int a = 0; a < dim - 1; ++a)
+          s[a] = Fad(dim - 1, a, xi[a]);
+        facet_basis<dim, Fad>(p, s, N, dN);
+        std::array<Fad, dim>                      Xk{}, n{};
+        std::array<std::array<Fad, dim>, dim - 1> A{};
+        for (unsigned int j = 0; j < N.size(); ++j)
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const double y = nodes[F.nodes[j]].X[d];
+              Xk[d] += N[j] * y;
+              n[d] += N[j] * normals[F.nodes[j]][d];
+              for (unsigned int a = 0; a < dim - 1; ++a)
+                A[a][d] += dN[j][a] * y;
+            }
+        const Fad            ln = sqrt(dot<Fad, dim>(n, n));
+        std::array<Fad, dim> r;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            n[d] /= ln;
+            r[d] = X[d] - Xk[d];
+          }
+        const Fad rn = dot<Fad, dim>(r, n);
+        for (unsigned int d = 0; d < dim; ++d)
+          r[d] -= rn * n[d];
+        std::array<std::array<double, dim - 1>, dim - 1> J;
+        std::array<double, dim - 1>                      R;
+        for (unsigned int a = 0; a < dim - 1; ++a)
+          {
+            const Fad Ra = dot<Fad, dim>(r, A[a]);
+            R[a]         = -Ra.val();
+            for (unsigned int b = 0; b < dim - 1; ++b)
+              J[a][b] = Ra.dx(b);
+          }
+        const double det = dim == 2 ? J[0][0] :
+                                      J[0][0] * J[dim - 2][dim - 2] -
+                                        J[0][dim - 2] * J[dim - 2][0];
+        if (std::abs(det) < 1e-300)
+          return false;
+        const auto d    = solve_small<double, dim - 1>(J, R);
+        double     step = 0.;
+        for (unsigned int a = 0; a < dim - 1; ++a)
+          {
+            xi[a] = std::clamp(xi[a] + d[a], -0.5, 1.5);
+            step  = std::max(step, std::abs(d[a]));
+          }
+        converged = step < 1e-13;
+      }
+    if (!converged)
+      return false;
+    for (auto &s : xi)
+      {
+        if (s < -1e-9 || s > 1. + 1e-9)
+          return false;
+        s = std::clamp(s, 0., 1.);
+      }
+    // The line along N(xi) must pass through X (not merely be orthogonal
+    // to the tangents), and X must not lie behind the master by more than
+    // a facet (the other side of the body).
+    std::vector<double>                      Nd;
+    std::vector<std::array<double, dim - 1>> dNd;
+    facet_basis<dim, double>(p, xi, Nd, dNd);
+    Point<dim> Xk;
+    for (unsigned int j = 0; j < Nd.size(); ++j)
+      Xk += Nd[j] * nodes[F.nodes[j]].X;
+    const Tensor<1, dim> n = normal_field(facet, xi);
+    const Tensor<1, dim> r = X - Xk;
+    distance               = r * n;
+    return (r - distance * n).norm() <= 1e-8 * (r.norm() + size) &&
+           distance > -size;
+  }
+
+  template <int dim>
+  typename SmallSliding<dim>::Anchor
+  SmallSliding<dim>::anchor(const Point<dim> &X) const
+  {
+    namespace bgi      = boost::geometry::index;
+    const auto &facets = surface.get_facets();
+    const auto &nodes  = surface.get_nodes();
+    const auto  p      = surface.degree();
+    Anchor      a;
+    if (facets.empty())
+      return a;
+
+    // Facets near X first; the search widens until an anchor is found or
+    // every facet has been tried.
+    std::set<unsigned int> tried;
+    double                 best = std::numeric_limits<double>::max();
+    for (double radius = 1.5 * surface.facet_size();; radius *= 2.)
+      {
+        Point<dim> lo = X, hi = X;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            lo[d] -= radius;
+            hi[d] += radius;
+          }
+        std::vector<Leaf> candidates;
+        tree.query(bgi::intersects(BoundingBox<dim>(std::make_pair(lo, hi))),
+                   std::back_inserter(candidates));
+        std::sort(candidates.begin(),
+                  candidates.end(),
+                  [](const Leaf &x, const Leaf &y) {
+                    return x.second < y.second;
+                  });
+        for (const auto &c : candidates)
+          {
+            if (!tried.insert(c.second).second)
+              continue;
+            Xi     xi;
+            double distance;
+            if (anchor_on(c.second, X, xi, distance) &&
+                std::abs(distance) < best)
+              {
+                best    = std::abs(distance);
+                a.found = true;
+                a.facet = c.second;
+                a.xi    = xi;
+              }
+          }
+        if (a.found || tried.size() == facets.size())
+          break;
+      }
+    if (!a.found)
+      return a;
+
+    // X0 at a vertex of its facet: the load list is that node and every
+    // node of the facets around it (R11.1).
+    const auto &F = facets[a.facet];
+    for (unsigned int k = 0; k < F.nodes.size(); ++k)
+      {
+        const unsigned int i = k % (p + 1), j = k / (p + 1);
+        if ((i != 0 && i != p) || (j != 0 && j != p))
+          continue;
+        const double s = double(i) / p, t = double(j) / p;
+        if (std::abs(a.xi[0] - s) < 1e-8 &&
+            (dim == 2 || std::abs(a.xi[dim - 2] - t) < 1e-8))
+          a.node = F.nodes[k];
+      }
+    a.facets.push_back(a.facet);
+    if (a.node >= 0)
+      for (const auto f : node_facets[a.node])
+        if (f != a.facet)
+          a.facets.push_back(f);
+    std::set<unsigned int> list;
+    for (const auto f : a.facets)
+      list.insert(facets[f].nodes.begin(), facets[f].nodes.end());
+    a.list.assign(list.begin(), list.end());
+
+    // Anchor point, plane normal and its components in the facet's frame.
+    std::vector<double>                      N;
+    std::vector<std::array<double, dim - 1>> dN;
+    facet_basis<dim, double>(p, a.xi, N, dN);
+    std::array<std::array<double, dim>, dim - 1> A{};
+    for (unsigned int j = 0; j < N.size(); ++j)
+      {
+        a.X0 += N[j] * nodes[F.nodes[j]].X;
+        for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
+          for (unsigned int d = 0; d < dim; ++d)
+            A[alpha][d] += dN[j][alpha] * nodes[F.nodes[j]].X[d];
+      }
+    a.N0         = normal_field(a.facet, a.xi);
+    const auto e = facet_frame<double, dim>(A);
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int d = 0; d < dim; ++d)
+        a.frame[i] += a.N0[d] * e[i][d];
+
+    // Initial weights (R6.3).
+    std::array<double, dim> xs, n, x0;
+    for (unsigned int d = 0; d < dim; ++d)
+      xs[d] = X[d];
+    double gap;
+    evaluate<double>(
+      a,
+      xs,
+      [&](const unsigned int k) {
+        std::array<double, dim> y;
+        for (unsigned int d = 0; d < dim; ++d)
+          y[d] = nodes[k].X[d];
+        return y;
+      },
+      false,
+      gap,
+      n,
+      x0,
+      a.weights);
+
+    // R12.2: one facet length, less where the master turns by more than
+    // 10 degrees over the facet.
+    double size = 0., angle = 0.;
+    for (const auto i : F.nodes)
+      for (const auto j : F.nodes)
+        {
+          size = std::max(size, nodes[i].X.distance(nodes[j].X));
+          angle =
+            std::max(angle,
+                     std::acos(std::clamp(normals[i] * normals[j], -1., 1.)));
+        }
+    const double turn = 10. * numbers::PI / 180.;
+    a.limit           = size * std::min(1., turn / std::max(angle, 1e-300));
+    return a;
+  }
+
+  template <int dim>
+  template <typename T, typename Positions>
+  void
+  SmallSliding<dim>::evaluate(const Anchor             &a,
+                              const std::array<T, dim> &xs,
+                              const Positions          &pos,
+                              const bool                fixed_plane,
+                              T                        &gap,
+                              std::array<T, dim>       &n,
+                              std::array<T, dim>       &x0,
+                              std::vector<T>           &w) const
+  {
+    const auto        &facets = surface.get_facets();
+    const auto        &nodes  = surface.get_nodes();
+    const unsigned int p      = surface.degree();
+    w.assign(a.list.size(), T(0.));
+    auto index = [&](const unsigned int k) {
+      return std::lower_bound(a.list.begin(), a.list.end(), k) - a.list.begin();
+    };
+
+    if (fixed_plane)
+      {
+        // Infinitesimal sliding: the initial plane, moved by the weighted
+        // master displacements.
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            n[d]  = a.N0[d];
+            x0[d] = a.X0[d];
+          }
+        for (unsigned int m = 0; m < a.list.size(); ++m)
+          {
+            const auto y = pos(a.list[m]);
+            w[m]         = a.weights[m];
+            for (unsigned int d = 0; d < dim; ++d)
+              x0[d] += a.weights[m] * (y[d] - nodes[a.list[m]].X[d]);
+          }
+        gap = T(0.);
+        for (unsigned int d = 0; d < dim; ++d)
+          gap += (xs[d] - x0[d]) * n[d];
+        return;
+      }
+
+    // The anchor's material point and the plane normal carried by the
+    // facet's frame (R10.1).
+    const auto                              &F = facets[a.facet];
+    std::vector<double>                      N;
+    std::vector<std::array<double, dim - 1>> dN;
+    facet_basis<dim, double>(p, a.xi, N, dN);
+    std::array<std::array<T, dim>, dim - 1> A;
+    for (auto &v : A)
+      v.fill(T(0.));
+    x0.fill(T(0.));
+    for (unsigned int j = 0; j < N.size(); ++j)
+      {
+        const auto y = pos(F.nodes[j]);
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            x0[d] += N[j] * y[d];
+            for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
+              A[alpha][d] += dN[j][alpha] * y[d];
+          }
+      }
+    const auto e = facet_frame<T, dim>(A);
+    n.fill(T(0.));
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int d = 0; d < dim; ++d)
+        n[d] += a.frame[i] * e[i][d];
+    gap = T(0.);
+    for (unsigned int d = 0; d < dim; ++d)
+      gap += (xs[d] - x0[d]) * n[d];
+
+    // Centre of action: the slave node's projection onto the plane, in the
+    // parameters of the anchor facet or, at a node, of the facet around it
+    // that contains it (linearized at the anchor), clamped to the facet.
+    std::array<T, dim> pc;
+    for (unsigned int d = 0; d < dim; ++d)
+      pc[d] = xs[d] - gap * n[d];
+    unsigned int           chosen = a.facet;
+    std::array<T, dim - 1> xi_chosen;
+    bool                   inside = false;
+    for (unsigned int k = 0; k < a.facets.size() && !inside; ++k)
+      {
+        const auto &K = facets[a.facets[k]];
+        Xi          c = a.xi;
+        if (k > 0)
+          {
+            const unsigned int at =
+              std::find(K.nodes.begin(), K.nodes.end(), a.node) -
+              K.nodes.begin();
+            c[0] = double(at % (p + 1)) / p;
+            if (dim == 3)
+              c[dim - 2] = double(at / (p + 1)) / p;
+          }
+        facet_basis<dim, double>(p, c, N, dN);
+        std::array<std::array<T, dim>, dim - 1> b;
+        std::array<T, dim>                      xc;
+        for (auto &v : b)
+          v.fill(T(0.));
+        xc.fill(T(0.));
+        for (unsigned int j = 0; j < N.size(); ++j)
+          {
+            const auto y = pos(K.nodes[j]);
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                xc[d] += N[j] * y[d];
+                for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
+                  b[alpha][d] += dN[j][alpha] * y[d];
+              }
+          }
+        std::array<std::array<T, dim - 1>, dim - 1> G;
+        std::array<T, dim - 1>                      r;
+        for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
+          {
+            r[alpha] = T(0.);
+            for (unsigned int d = 0; d < dim; ++d)
+              r[alpha] += b[alpha][d] * (pc[d] - xc[d]);
+            for (unsigned int beta = 0; beta < dim - 1; ++beta)
+              G[alpha][beta] = dot<T, dim>(b[alpha], b[beta]);
+          }
+        const auto             d = solve_small<T, dim - 1>(G, r);
+        std::array<T, dim - 1> xi;
+        inside = true;
+        for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
+          {
+            xi[alpha] = c[alpha] + d[alpha];
+            inside    = inside && value_of(xi[alpha]) >= -1e-10 &&
+                     value_of(xi[alpha]) <= 1. + 1e-10;
+          }
+        if (k == 0 || inside)
+          {
+            chosen    = a.facets[k];
+            xi_chosen = xi;
+          }
+      }
+    for (auto &s : xi_chosen)
+      if (value_of(s) < 0.)
+        s = T(0.);
+      else if (value_of(s) > 1.)
+        s = T(1.);
+    std::vector<T>                      NK;
+    std::vector<std::array<T, dim - 1>> dNK;
+    facet_basis<dim, T>(p, xi_chosen, NK, dNK);
+    for (unsigned int j = 0; j < NK.size(); ++j)
+      w[index(facets[chosen].nodes[j])] = NK[j];
+  }
+
+  template <int dim>
+  typename SmallSliding<dim>::Plane
+  SmallSliding<dim>::plane(const Anchor &a, const Point<dim> &x) const
+  {
+    const auto             &positions = surface.get_positions();
+    std::array<double, dim> xs, n, x0;
+    for (unsigned int d = 0; d < dim; ++d)
+      xs[d] = x[d];
+    double              gap;
+    std::vector<double> w;
+    evaluate<double>(
+      a,
+      xs,
+      [&](const unsigned int k) {
+        std::array<double, dim> y;
+        for (unsigned int d = 0; d < dim; ++d)
+          y[d] = positions[k][d];
+        return y;
+      },
+      infinitesimal,
+      gap,
+      n,
+      x0,
+      w);
+    Plane result;
+    result.gap = gap;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        result.point[d]  = x0[d];
+        result.normal[d] = n[d];
+      }
+    return result;
+  }
+
+  template <int dim>
+  std::vector<double>
+  SmallSliding<dim>::weights(const Anchor &a, const Point<dim> &x) const
+  {
+    const auto             &positions = surface.get_positions();
+    std::array<double, dim> xs, n, x0;
+    for (unsigned int d = 0; d < dim; ++d)
+      xs[d] = x[d];
+    double              gap;
+    std::vector<double> w;
+    evaluate<double>(
+      a,
+      xs,
+      [&](const unsigned int k) {
+        std::array<double, dim> y;
+        for (unsigned int d = 0; d < dim; ++d)
+          y[d] = positions[k][d];
+        return y;
+      },
+      infinitesimal,
+      gap,
+      n,
+      x0,
+      w);
+    return w;
+  }
+
+  template <int dim>
+  void
+  SmallSliding<dim>::linearize(
+    const Anchor                                   &a,
+    const Point<dim>                               &x,
+    const std::array<types::global_dof_index, dim> &slave_dofs,
+    Linearization                                  &l) const
+  {
+    const auto          &positions = surface.get_positions();
+    const auto          &nodes     = surface.get_nodes();
+    const unsigned int   n_var     = dim * (1 + a.list.size());
+    std::array<Fad, dim> xs;
+    for (unsigned int d = 0; d < dim; ++d)
+      xs[d] = Fad(n_var, d, x[d]);
+    Fad                  gap;
+    std::array<Fad, dim> n, x0;
+    std::vector<Fad>     w;
+    evaluate<Fad>(
+      a,
+      xs,
+      [&](const unsigned int k) {
+        const unsigned int m =
+          std::lower_bound(a.list.begin(), a.list.end(), k) - a.list.begin();
+        std::array<Fad, dim> y;
+        for (unsigned int d = 0; d < dim; ++d)
+          y[d] = Fad(n_var, dim * (1 + m) + d, positions[k][d]);
+        return y;
+      },
+      infinitesimal,
+      gap,
+      n,
+      x0,
+      w);
+
+    l.dofs.assign(slave_dofs.begin(), slave_dofs.end());
+    for (const auto k : a.list)
+      for (unsigned int d = 0; d < dim; ++d)
+        l.dofs.push_back(nodes[k].dofs[d]);
+    l.gap = gap.val();
+    for (unsigned int d = 0; d < dim; ++d)
+      l.normal[d] = n[d].val();
+    l.dgap.reinit(n_var);
+    l.force.reinit(n_var);
+    l.dforce.reinit(n_var, n_var);
+    // Force direction: n on the slave node, -w_m n on master node m.
+    for (unsigned int i = 0; i < n_var; ++i)
+      {
+        const unsigned int m = i / dim, d = i % dim;
+        const Fad          G = m == 0 ? n[d] : Fad(-w[m - 1] * n[d]);
+        l.force(i)           = G.val();
+        l.dgap(i)            = gap.dx(i);
+        for (unsigned int j = 0; j < n_var; ++j)
+          l.dforce(i, j) = G.dx(j);
+      }
+  }
+
+  template class SmallSliding<2>;
+  template class SmallSliding<3>;
+} // namespace glide
