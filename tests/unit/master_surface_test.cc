@@ -69,29 +69,7 @@ namespace
   }
 
   template <int dim>
-  struct Fixture
-  {
-    Fixture(const std::string &text, const std::string &name)
-      : scene(Scene::read(glide_test::write_file(name, text)))
-      , timer(MPI_COMM_WORLD,
-              std::cout,
-              TimerOutput::never,
-              TimerOutput::wall_times)
-      , e(scene, MPI_COMM_WORLD, timer)
-      , contact(scene, e, MPI_COMM_WORLD)
-    {
-      e.setup();
-      contact.setup(e.get_dof_handler().n_dofs());
-      e.setup_system(contact.owned_multipliers(),
-                     [&](DynamicSparsityPattern &dsp) {
-                       contact.add_sparsity(dsp);
-                     });
-    }
-    Scene           scene;
-    TimerOutput     timer;
-    Elasticity<dim> e;
-    Contact<dim>    contact;
-  };
+  using Fixture = glide_test::ContactFixture<dim>;
 
   template <int dim>
   void
@@ -135,14 +113,7 @@ namespace
     EXPECT_GT(std::stoi(stats[0].second), 0) << tag << ": some nodes closed";
   }
 
-  template <int dim>
-  std::unique_ptr<MasterSurface<dim>>
-  master_of(Fixture<dim> &s, const std::string &surface, const double f)
-  {
-    const auto ids = s.e.get_mesh().surface(surface, "test");
-    return std::make_unique<MasterSurface<dim>>(
-      s.e, std::set<types::boundary_id>(ids.begin(), ids.end()), f, "test");
-  }
+  using glide_test::master_of;
 } // namespace
 
 // R5.1: consistent Jacobian with a deformable master, faceted (f = 0) and

@@ -106,3 +106,48 @@ namespace glide_test
     e.update_constraints().distribute(v);
   }
 } // namespace glide_test
+
+#include <deal.II/base/timer.h>
+
+namespace glide_test
+{
+  /// A scene read from @p text (written to a scratch file @p name) with its
+  /// bodies and contact pairs set up.
+  template <int dim>
+  struct ContactFixture
+  {
+    ContactFixture(const std::string &text, const std::string &name)
+      : scene(glide::Scene::read(write_file(name, text)))
+      , timer(MPI_COMM_WORLD,
+              std::cout,
+              dealii::TimerOutput::never,
+              dealii::TimerOutput::wall_times)
+      , e(scene, MPI_COMM_WORLD, timer)
+      , contact(scene, e, MPI_COMM_WORLD)
+    {
+      e.setup();
+      contact.setup(e.get_dof_handler().n_dofs());
+      e.setup_system(contact.owned_multipliers(),
+                     [&](dealii::DynamicSparsityPattern &dsp) {
+                       contact.add_sparsity(dsp);
+                     });
+    }
+    glide::Scene           scene;
+    dealii::TimerOutput    timer;
+    glide::Elasticity<dim> e;
+    glide::Contact<dim>    contact;
+  };
+
+  /// The master surface made of surface @p surface of fixture @p s.
+  template <int dim>
+  std::unique_ptr<glide::MasterSurface<dim>>
+  master_of(ContactFixture<dim> &s, const std::string &surface, const double f)
+  {
+    const auto ids = s.e.get_mesh().surface(surface, "test");
+    return std::make_unique<glide::MasterSurface<dim>>(
+      s.e,
+      std::set<dealii::types::boundary_id>(ids.begin(), ids.end()),
+      f,
+      "test");
+  }
+} // namespace glide_test
