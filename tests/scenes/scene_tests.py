@@ -726,6 +726,36 @@ def case_concentric_cylinders_anchors():
     check(n["y"] - (1 + u[k][1]) > -1e-6, f"no penetration at the plane ({n['y'] - (1 + u[k][1]):.2g})")
 
 
+def case_excessive_sliding():
+    """Issue 4, R11.3, R12.2: parameters/excessive-sliding.prm. A block is
+    pressed onto a foundation of two bodies (left, right; master: both
+    tops, facets 0.5) and pushed 0.8 from over the left body to over the
+    right one, small (here infinitesimal) sliding. Every slave node is
+    anchored on the left body and keeps loading its anchor facet's nodes
+    (R11.3): in the last step the left body's support carries the whole
+    contact force (balance to 1e-9) and the right body's exactly nothing,
+    and every slave node is still closed. The log warns that small sliding
+    is not small, naming all 5 slave nodes (slide about 0.59 > 0.5, one
+    facet length, R12.2). With finite sliding the same scene loads the
+    right body (reaction within 1e-9 of the contact force, the left body
+    carries nothing) and gives no warning."""
+    es = scene_file("excessive-sliding.prm")
+    rows, log, out = run(es, "Output/Write VTU=false")
+    last = rows[-1]
+    check(last["contact_slide_normal_force"] > 0.1, f"contact force {last['contact_slide_normal_force']:.4g}")
+    close(last["reaction_left_bottom_y"], last["contact_slide_force_y"], 1e-9, "the left body carries the load")
+    check(last["reaction_right_bottom_y"] == 0, f"the right body carries nothing ({last['reaction_right_bottom_y']})")
+    check(all(n["CSTATUS"] == 1 for n in contact_nodes(out, "slide")), "every slave node still closed")
+    check(log.count("small sliding is not small for 5 slave node(s)") == 1, "one warning for the 5 nodes")
+    for x in ("-0.5 0", "-0.25 0", "0 0"):
+        check(f"({x}) slid" in log, f"the warning names the node ({x})")
+    rows, log, _ = run(es, "Output/Write VTU=false", "Contact pair slide/Sliding=finite", name="finite")
+    last = rows[-1]
+    close(last["reaction_right_bottom_y"], last["contact_slide_force_y"], 1e-9, "finite sliding: the right body carries the load")
+    check(abs(last["reaction_left_bottom_y"]) < 1e-12, "finite sliding: the left body carries nothing")
+    check("not small" not in log, "finite sliding: no warning")
+
+
 def case_hertz_2d_deformable_master():
     """Issue 3 (deformable master, R1.1, R4.1): Hertz line contact between
     an elastic cylinder (slave) and an elastic block (master, its faceted
