@@ -420,17 +420,25 @@ namespace glide
             s.gap            = plane.gap;
             s.normal         = plane.normal;
             s.anchor         = plane.point;
+            s.tangents       = plane.tangents;
           }
         else if (a.found)
           {
             // Analytical rigid master: the plane moves with it, and turns
             // with it unless sliding is infinitesimal.
-            s.anchor = pair.master->move(a.X0, 0., time);
-            s.normal = a.N0;
+            s.anchor   = pair.master->move(a.X0, 0., time);
+            s.normal   = a.N0;
+            s.tangents = contact_tangents<dim>(a.N0);
             if (scene.geometric_nonlinearity)
               {
-                s.normal = pair.master->move(a.X0 + a.N0, 0., time) - s.anchor;
-                s.normal /= s.normal.norm();
+                const auto turn = [&](const Tensor<1, dim> &v) {
+                  const Tensor<1, dim> w =
+                    pair.master->move(a.X0 + v, 0., time) - s.anchor;
+                  return w / w.norm();
+                };
+                s.normal = turn(s.normal);
+                for (auto &t : s.tangents)
+                  t = turn(t);
               }
             s.gap = (s.x - s.anchor) * s.normal;
           }
@@ -451,6 +459,8 @@ namespace glide
         s.gap    = s.rigid.gap;
         s.normal = s.rigid.normal;
       }
+    if (!pair.small)
+      s.tangents = contact_tangents<dim>(s.normal);
     const double g = s.gap;
     if (node.multiplier != numbers::invalid_dof_index)
       {
@@ -723,14 +733,31 @@ namespace glide
               // Small sliding: relative to the anchor's material point;
               // R12.2: warn once per node that moved along its plane
               // further than its limit from the anchor.
+              // Slip is the change of the slave node's coordinates along
+              // the plane's tangents, which turn with the master: a rigid
+              // rotation of both bodies does not slip.
               if (!pair.anchors[i].found)
                 continue;
+              std::array<double, 2> offset{{0., 0.}};
+              double                slide = 0.;
+              for (unsigned int a = 0; a < dim - 1; ++a)
+                {
+                  offset[a] = (s.x - s.anchor) * s.tangents[a];
+                  slide += offset[a] * offset[a];
+                }
+              slide = std::sqrt(slide);
               if (s.closed)
-                accumulate(i,
-                           (s.x - pair.previous_position[i]) -
-                             (s.anchor - pair.previous_anchor[i]));
-              const Tensor<1, dim> r = s.x - s.anchor;
-              const double slide     = (r - (r * s.normal) * s.normal).norm();
+                {
+                  double increment = 0.;
+                  for (unsigned int a = 0; a < dim - 1; ++a)
+                    {
+                      const double d = offset[a] - pair.previous_offset[i][a];
+                      pair.slip_components[i][a] += d;
+                      increment += d * d;
+                    }
+                  pair.slip[i] += std::sqrt(increment);
+                }
+              pair.previous_offset[i] = offset;
               if (slide > pair.anchors[i].limit && !pair.warned[i])
                 {
                   pair.warned[i] = true;
@@ -739,7 +766,6 @@ namespace glide
                     << pair.anchors[i].limit;
                   slid_too_far[&pair - pairs.data()].push_back(x.str());
                 }
-              pair.previous_anchor[i] = s.anchor;
             }
           else if (s.closed && pair.surface)
             {
@@ -815,7 +841,7 @@ namespace glide
             local.push_back(pair.slip[i]);
             for (unsigned int d = 0; d < dim; ++d)
               local.push_back(s.normal[d]);
-            for (const auto &t : contact_tangents<dim>(s.normal))
+            for (const auto &t : s.tangents)
               for (unsigned int d = 0; d < dim; ++d)
                 local.push_back(t[d]);
             for (unsigned int a = 0; a < dim - 1; ++a)
@@ -1053,7 +1079,7 @@ namespace glide
     std::vector<std::string> unanchored;
     for (unsigned int i = 0; i < pair.nodes.size(); ++i)
       {
-        pair.previous_anchor.push_back(pair.anchors[i].X0);
+        pair.previous_offset.push_back({{0., 0.}});
         if (!pair.anchors[i].found)
           {
             std::ostringstream x;

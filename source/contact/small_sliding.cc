@@ -377,11 +377,16 @@ namespace glide
           for (unsigned int d = 0; d < dim; ++d)
             A[alpha][d] += dN[j][alpha] * nodes[F.nodes[j]].X[d];
       }
-    a.N0         = normal_field(a.facet, a.xi);
-    const auto e = facet_frame<double, dim>(A);
+    a.N0                = normal_field(a.facet, a.xi);
+    const auto e        = facet_frame<double, dim>(A);
+    const auto tangents = contact_tangents<dim>(a.N0);
     for (unsigned int i = 0; i < dim; ++i)
       for (unsigned int d = 0; d < dim; ++d)
-        a.frame[i] += a.N0[d] * e[i][d];
+        {
+          a.frame[i] += a.N0[d] * e[i][d];
+          for (unsigned int t = 0; t < dim - 1; ++t)
+            a.tangent_frame[t][i] += tangents[t][d] * e[i][d];
+        }
 
     // Initial weights (R6.3).
     std::array<double, dim> xs, n, x0;
@@ -596,7 +601,37 @@ namespace glide
         result.point[d]  = x0[d];
         result.normal[d] = n[d];
       }
+    // The initial tangents, turned with the facet (R13.1, R10.1).
+    const auto e = anchor_frame(a, infinitesimal);
+    for (unsigned int t = 0; t < dim - 1; ++t)
+      for (unsigned int i = 0; i < dim; ++i)
+        result.tangents[t] += a.tangent_frame[t][i] * e[i];
     return result;
+  }
+
+  template <int dim>
+  std::array<Tensor<1, dim>, dim>
+  SmallSliding<dim>::anchor_frame(const Anchor &a, const bool initial) const
+  {
+    const auto                              &F = surface.get_facets()[a.facet];
+    std::vector<double>                      N;
+    std::vector<std::array<double, dim - 1>> dN;
+    facet_basis<dim, double>(surface.degree(), a.xi, N, dN);
+    std::array<std::array<double, dim>, dim - 1> A{};
+    for (unsigned int j = 0; j < N.size(); ++j)
+      {
+        const Point<dim> &y = initial ? surface.get_nodes()[F.nodes[j]].X :
+                                        surface.get_positions()[F.nodes[j]];
+        for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
+          for (unsigned int d = 0; d < dim; ++d)
+            A[alpha][d] += dN[j][alpha] * y[d];
+      }
+    const auto                      e = facet_frame<double, dim>(A);
+    std::array<Tensor<1, dim>, dim> frame;
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int d = 0; d < dim; ++d)
+        frame[i][d] = e[i][d];
+    return frame;
   }
 
   template <int dim>

@@ -756,6 +756,35 @@ def case_excessive_sliding():
     check("not small" not in log, "finite sliding: no warning")
 
 
+def case_small_sliding_large_rotation():
+    """Issue 4, R10.1, R13.1: tests/scenes/rotating-pair.prm. Two neo-Hookean
+    blocks pressed together (t <= 0.5), then turned rigidly together by 90
+    degrees about the origin (t = 0.5 to 1), small sliding. A rigid
+    rotation changes no stress, so every slave node's CPRESS at t = 1 equals
+    that at t = 0.5 (1e-9 relative; measured equal to 12 digits), the
+    contact force turns from +y to -x with its length kept, and CSLIP and
+    CSLIP1 do not change during the rotation (the tangents turn with the
+    master facet). At most 5 Newton iterations per step (measured 2 and
+    4)."""
+    rows, _, out = run(scene("rotating-pair.prm"), "Output/Write VTU=false")
+    half = [r for r in rows if r["load_factor"] == 0.5][0]
+    last = rows[-1]
+    for r in rows:
+        check(r["kinsol_iterations"] <= 5, f"{int(r['kinsol_iterations'])} iterations at t={r['load_factor']}")
+    close(last["contact_pair_force_x"], -half["contact_pair_force_y"], 1e-9, "force turned to -x")
+    check(abs(last["contact_pair_force_y"]) < 1e-9 * half["contact_pair_force_y"], "no y force left")
+    files = sorted(f for f in os.listdir(out) if f.startswith("contact-pair-") and f.endswith(".csv"))
+    def read(f):
+        with open(os.path.join(out, f)) as h:
+            return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(h)]
+    before, after = read(files[int(half["step"]) - 1]), read(files[-1])
+    for a, b in zip(before, after):
+        check(a["CSTATUS"] == 1 and b["CSTATUS"] == 1, f"node ({a['X']}, {a['Y']}) closed")
+        close(b["CPRESS"], a["CPRESS"], 1e-9, f"CPRESS of ({a['X']}, {a['Y']}) unchanged by the rotation")
+        check(abs(b["CSLIP"] - a["CSLIP"]) < 1e-12 and abs(b["CSLIP1"] - a["CSLIP1"]) < 1e-12,
+              f"no slip during the rotation at ({a['X']}, {a['Y']})")
+
+
 def case_hertz_2d_deformable_master():
     """Issue 3 (deformable master, R1.1, R4.1): Hertz line contact between
     an elastic cylinder (slave) and an elastic block (master, its faceted

@@ -17,17 +17,6 @@
 namespace glide
 {
   /**
-   * Local tangent directions at a contact point with normal @p n (R13.1),
-   * by a fixed convention: in 2D t1 = e_z x n (the master's direction of
-   * increasing parameter); in 3D t1 is the global x axis projected onto the
-   * tangent plane (the z axis if x is within 0.1 degrees of n), t2 = n x
-   * t1. They follow the current normal, so they rotate with the surface.
-   */
-  template <int dim>
-  std::array<dealii::Tensor<1, dim>, dim - 1>
-  contact_tangents(const dealii::Tensor<1, dim> &n);
-
-  /**
    * The contact part (DESIGN.md, "Contact formulation"): every contact pair
    * of the scene, node-to-surface, finite sliding, against analytical rigid
    * masters, with hard or penalty enforcement (P2.1, P2.3, P1.4). It
@@ -189,8 +178,10 @@ namespace glide
       bool                                            small = false;
       std::unique_ptr<SmallSliding<dim>>              planes;
       std::vector<typename SmallSliding<dim>::Anchor> anchors;
-      std::vector<dealii::Point<dim>>                 previous_anchor;
-      std::vector<bool>                               warned;
+      /// Tangential coordinates of the slave node relative to its anchor at
+      /// the end of the last converged step (along the plane's tangents).
+      std::vector<std::array<double, 2>> previous_offset;
+      std::vector<bool>                  warned;
       /// Per node: master nodes coupled in the sparsity pattern (sorted),
       /// and the projection at the end of the last converged step.
       std::vector<std::vector<unsigned int>>               coupled;
@@ -220,9 +211,11 @@ namespace glide
       bool                                    found = true;
       typename RigidMaster<dim>::Projection   rigid;
       typename MasterSurface<dim>::Projection projection;
-      dealii::Point<dim> anchor;      ///< small sliding: current anchor point
-      double             lambda = 0.; ///< normal force
-      bool               closed = false;
+      dealii::Point<dim> anchor; ///< small sliding: current anchor point
+      /// Local tangent directions (R13.1).
+      std::array<dealii::Tensor<1, dim>, dim - 1> tangents;
+      double                                      lambda = 0.; ///< normal force
+      bool                                        closed = false;
     };
     /// State of a slave node at iterate U (deformable masters must have
     /// been moved to U with set_displacement()).

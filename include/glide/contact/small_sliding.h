@@ -13,6 +13,19 @@
 namespace glide
 {
   /**
+   * Local tangent directions at a contact point with normal @p n (R13.1),
+   * by a fixed convention: in 2D t1 = e_z x n (the master's direction of
+   * increasing parameter); in 3D t1 is the global x axis projected onto the
+   * tangent plane (the z axis if x is within 0.1 degrees of n), t2 = n x
+   * t1. Finite sliding evaluates them at the current normal; small sliding
+   * evaluates them once at the anchor and then turns them with the master
+   * facet.
+   */
+  template <int dim>
+  std::array<dealii::Tensor<1, dim>, dim - 1>
+  contact_tangents(const dealii::Tensor<1, dim> &n);
+
+  /**
    * Small-sliding node-to-surface contact against the master surface of a
    * deformable (or meshed rigid) body (issue 4; R6-R8, R10-R12; equations
    * in doc/theory/small-sliding.md).
@@ -65,8 +78,10 @@ namespace glide
       std::vector<unsigned int> facets;
       dealii::Point<dim>        X0;
       dealii::Tensor<1, dim>    N0;
-      /// N0 in the anchor facet's orthonormal frame at xi (reference).
-      std::array<double, dim> frame = {};
+      /// N0 and the initial local tangent directions (R13.1) in the anchor
+      /// facet's orthonormal frame at xi (reference).
+      std::array<double, dim>                      frame         = {};
+      std::array<std::array<double, dim>, dim - 1> tangent_frame = {};
       /// Load-transfer weights over `list` in the initial configuration
       /// (used throughout in infinitesimal sliding).
       std::vector<double> weights;
@@ -98,13 +113,14 @@ namespace glide
     dealii::Tensor<1, dim>
     normal_field(const unsigned int facet, const Xi &xi) const;
 
-    /// Current anchor point, plane normal and gap of a slave node at @p x
-    /// (master at its current positions).
+    /// Current anchor point, plane normal, local tangent directions and
+    /// gap of a slave node at @p x (master at its current positions).
     struct Plane
     {
-      dealii::Point<dim>     point;
-      dealii::Tensor<1, dim> normal;
-      double                 gap = 0.;
+      dealii::Point<dim>                          point;
+      dealii::Tensor<1, dim>                      normal;
+      std::array<dealii::Tensor<1, dim>, dim - 1> tangents;
+      double                                      gap = 0.;
     };
     Plane
     plane(const Anchor &a, const dealii::Point<dim> &x) const;
@@ -142,6 +158,12 @@ namespace glide
              std::array<T, dim>       &n,
              std::array<T, dim>       &x0,
              std::vector<T>           &w) const;
+
+    /// Orthonormal frame of the anchor facet of @p a at its anchor
+    /// parameters, at the current positions (initial positions if
+    /// @p initial).
+    std::array<dealii::Tensor<1, dim>, dim>
+    anchor_frame(const Anchor &a, const bool initial) const;
 
     /// Newton for the anchor on facet @p facet; false if none there.
     bool
