@@ -1057,8 +1057,11 @@ namespace glide
                                               !scene.geometric_nonlinearity,
                                               scene.analysis ==
                                                 AnalysisType::axisymmetric);
+        // The only search of small sliding, once (counted as search time).
+        const auto start = std::chrono::steady_clock::now();
         for (const auto &node : pair.nodes)
           pair.anchors.push_back(pair.planes->anchor(node.X));
+        searching += std::chrono::steady_clock::now() - start;
       }
     else
       {
