@@ -223,6 +223,10 @@ namespace glide
             "' is both slave and master; a surface cannot contact itself.");
       }
 
+    require(master_normals.empty() || master_type == MasterType::surface,
+            "Parameter '" + path +
+              "/Master normals' applies to the master surface of a body; "
+              "an analytical rigid master has exact normals.");
     prm.enter_subsection("Rigid master");
     point        = read_point(prm, "Point", dim, path + "/Rigid master");
     normal       = read_point(prm, "Normal", dim, path + "/Rigid master");

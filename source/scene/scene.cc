@@ -345,6 +345,18 @@ namespace glide
       }
 
     for (const auto &cp : contact_pairs)
+      for (const auto &[set, normal] : cp.master_normals)
+        {
+          const auto dot = set.find('.');
+          require(node_set_names.count(set) > 0 ||
+                    (dot != std::string::npos &&
+                     body_names.count(set.substr(0, dot)) > 0),
+                  "Parameter 'Contact pair " + cp.name +
+                    "/Master normals': '" + set +
+                    "' is neither a node set of this scene (see 'Node sets') "
+                    "nor a surface <body>.<surface>.");
+        }
+    for (const auto &cp : contact_pairs)
       {
         // A node-based slave surface: the name of a node set.
         if (node_set_names.count(cp.slave) > 0)
