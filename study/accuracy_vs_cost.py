@@ -10,7 +10,8 @@ step, wall time and peak memory, all read from the runs' own statistics;
 Hertz between elastic bodies with faceted and smoothed deformable masters
 (iterations, cut-backs, time, contact share); with --ironing also 2D
 ironing (ripple, iterations, cut-backs; --ironing-only updates just that
-section).
+section); small against finite sliding on the same 3D and 2D scenes (R6.2;
+--small-sliding-only updates just that section).
 
 Usage: python3 study/accuracy_vs_cost.py --glide build/glide
 (needs python3-matplotlib for the plots)."""
@@ -263,6 +264,82 @@ def solve_cost_line(c):
             "line search; the ratio is measured in one run of each, on a shared machine.")
 
 
+SMALL_SLIDING_SCENES = (
+    ("hertz-3d-elastic.prm", "3D: sphere octant (master) on a block, quarter model",
+     ("Body sphere/Refinement/Local refinements=4", "Body block/Refinement/Local refinements=4",
+      "Body sphere/Refinement/Minimum refinement radius=0.2",
+      "Body block/Refinement/Minimum refinement radius=0.2")),
+    ("hertz-2d-elastic.prm", "2D: cylinder on a block (master: the block's top)", ()),
+)
+
+
+def small_sliding_cost(glide, out):
+    """R6.2: small against finite sliding on the same scenes, run one after
+    the other twice in this process (the faster run of each counts)."""
+    results = []
+    for scene, title, sets in SMALL_SLIDING_SCENES:
+        best = {}
+        for repeat in range(2):
+            for sliding in ("finite", "small"):
+                r = run_scene(glide, scene, out, f"sliding-{sliding}-{repeat}", *sets,
+                              f"Contact pair hertz/Sliding={sliding}")
+                if not r["finished"]:
+                    best[sliding] = {"error": r["error"]}
+                    continue
+                t = r["timings"]
+                its = sum(int(x["kinsol_iterations"]) for x in r["rows"])
+                step_time = sum(float(x["wall_time"]) for x in r["rows"])
+                contact = sum(float(v) for k, v in t.items() if k.startswith("time:contact"))
+                last = sorted(x for x in os.listdir(r["directory"])
+                              if x.startswith("contact-hertz-") and x.endswith(".csv"))[-1]
+                with open(os.path.join(r["directory"], last)) as fh:
+                    p0h = max(float(n["CPRESS"]) for n in csv.DictReader(fh))
+                entry = {"dofs": r["rows"][-1]["dofs"], "its": its, "total": float(t["total_wall_time"]),
+                         "per_iteration": step_time / max(its, 1), "contact_per_iteration": contact / max(its, 1),
+                         "search_share": search_share(t), "p0h": p0h,
+                         "force": float(r["rows"][-1]["contact_hertz_force_y"])}
+                if sliding not in best or entry["total"] < best[sliding].get("total", float("inf")):
+                    best[sliding] = entry
+        results.append({"scene": scene, "title": title, "sets": list(sets), **best})
+    return results
+
+
+def small_sliding_lines(results):
+    lines = ["## Small against finite sliding (R6.2)", "",
+             "The same geometrically linear scene with `Sliding = finite` and `Sliding = small` "
+             "(infinitesimal sliding here), f = 0.2 for the finite-sliding master. Both variants "
+             "run twice, one after the other, in one invocation; the faster run of each counts. "
+             "Time per iteration: the load steps' wall time over their Newton iterations; contact "
+             "per iteration: residual and Jacobian contact sections (finite sliding: with the "
+             "projections); search share: R-tree and projections (small sliding: the anchor search, "
+             "once) over the whole run.", "",
+             "| scene | sliding | DoFs | Newton its (all steps) | time [s] | per iteration [s] | contact per iteration [ms] | search share | peak pressure | contact force |",
+             "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for r in results:
+        for sliding in ("finite", "small"):
+            e = r.get(sliding, {})
+            if "total" not in e:
+                lines.append(f"| {r['scene']} | {sliding} | did not finish: {e.get('error')} | | | | | | | |")
+                continue
+            lines.append(f"| {r['scene']} | {sliding} | {e['dofs']} | {e['its']} | {e['total']:.2f} | "
+                         f"{e['per_iteration']:.3f} | {1000 * e['contact_per_iteration']:.2f} | "
+                         f"{100 * e['search_share']:.1f} % | {e['p0h']:.5g} | {e['force']:.5g} |")
+    lines.append("")
+    for r in results:
+        f, s = r.get("finite", {}), r.get("small", {})
+        if "total" in f and "total" in s:
+            lines.append(f"- {r['title']} ({', '.join(r['sets']) or 'the scene as shipped'}): small sliding "
+                         f"{f['total'] / s['total']:.2f} times faster in total, "
+                         f"{f['per_iteration'] / s['per_iteration']:.2f} times per iteration"
+                         + (" (goal at least 1.5 in 3D: met)." if r["scene"].startswith("hertz-3d") and
+                            f["total"] / s["total"] >= 1.5 else
+                            " (goal at least 1.5 in 3D: not met)." if r["scene"].startswith("hertz-3d") else ".")
+                         + f" Peak pressure differs by {100 * abs(s['p0h'] / f['p0h'] - 1):.1f} %, contact "
+                         f"force by {100 * abs(s['force'] / f['force'] - 1):.1f} %.")
+    lines.append("")
+    return lines
+
+
 def ironing_results(a, out):
     """The ironing variants: run them, or with --reuse read ironing.json."""
     summary = os.path.join(out, "ironing.json")
@@ -300,6 +377,9 @@ def main():
     ap.add_argument("--ironing-only", action="store_true",
                     help="run only the ironing variants and replace the Ironing section of the "
                          "existing report (the rest stays as it is)")
+    ap.add_argument("--small-sliding-only", action="store_true",
+                    help="measure only small against finite sliding (R6.2) and replace that section "
+                         "of the existing report (added before the targets if missing)")
     ap.add_argument("--solve-cost-only", action="store_true",
                     help="measure only the contact-solve-against-linear-solve target and replace its "
                          "line in the existing report")
@@ -314,6 +394,23 @@ def main():
         with open(report, "w") as f:
             f.write("\n".join(old))
         print(old[i])
+        return
+    if a.small_sliding_only:
+        out = tempfile.mkdtemp(prefix="glide-sliding-")
+        with open(report) as f:
+            old = f.read().split("\n")
+        new = small_sliding_lines(small_sliding_cost(os.path.abspath(a.glide), out))
+        new[2] += f" Measured on {datetime.date.today()} with `--small-sliding-only`."
+        starts = [i for i, x in enumerate(old) if x.startswith("## Small against finite sliding")]
+        if starts:
+            end = next((i for i in range(starts[0] + 1, len(old)) if old[i].startswith("## ")), len(old))
+            old = old[:starts[0]] + new + old[end:]
+        else:
+            at = next(i for i, x in enumerate(old) if x.startswith("## Targets"))
+            old = old[:at] + new + old[at:]
+        with open(report, "w") as f:
+            f.write("\n".join(old))
+        print("\n".join(new))
         return
     if a.ironing_only:
         out = a.reuse or tempfile.mkdtemp(prefix="glide-ironing-")
@@ -453,6 +550,7 @@ def main():
         lines += ironing_lines(ironing_results(a, out))
     else:
         lines += kept_section(report, "## Ironing")
+    lines += small_sliding_lines(small_sliding_cost(os.path.abspath(a.glide), out))
     lines += [
         "## Targets of issue 3 (benchmarks, not tests), measured",
         "",

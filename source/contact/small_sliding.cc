@@ -14,6 +14,9 @@ namespace glide
   namespace
   {
     using Fad = Sacado::Fad::DFad<double>;
+    /// Derivatives with respect to the dim - 1 facet parameters.
+    template <int dim>
+    using ParameterFad = Sacado::Fad::SFad<double, dim - 1>;
 
     double
     value_of(const double x)
@@ -212,6 +215,7 @@ namespace glide
     // (r - (r.N) N) . A_alpha = 0 with r = X - X(xi): the line along N(xi)
     // passes through X. Newton, derivatives by automatic differentiation.
     xi.fill(0.5);
+    using Fad                                       = ParameterFad<dim>;
     bool                                  converged = false;
     std::vector<Fad>                      N;
     std::vector<std::array<Fad, dim - 1>> dN;

@@ -351,8 +351,8 @@ namespace glide
           require(node_set_names.count(set) > 0 ||
                     (dot != std::string::npos &&
                      body_names.count(set.substr(0, dot)) > 0),
-                  "Parameter 'Contact pair " + cp.name +
-                    "/Master normals': '" + set +
+                  "Parameter 'Contact pair " + cp.name + "/Master normals': '" +
+                    set +
                     "' is neither a node set of this scene (see 'Node sets') "
                     "nor a surface <body>.<surface>.");
         }
