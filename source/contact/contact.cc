@@ -79,7 +79,8 @@ namespace glide
                                   fe,
                                   quadrature,
                                   update_values | update_JxW_values |
-                                    update_quadrature_points);
+                                    update_quadrature_points |
+                                    update_normal_vectors);
     std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
 
     for (const auto &p : scene.contact_pairs)
@@ -191,6 +192,24 @@ namespace glide
                                           1.);
                         node.size += cell->face(f)->diameter();
                         ++n_facets[cell_dofs[k[0]]];
+                        // For surface to surface: the area-weighted normal
+                        // and the surface mass int N_a N_b dA of the
+                        // node's neighbours on the slave surface.
+                        for (unsigned int q = 0; q < quadrature.size(); ++q)
+                          {
+                            const double dA =
+                              face_values.JxW(q) *
+                              (axisymmetric ?
+                                 2 * numbers::PI *
+                                   face_values.quadrature_point(q)[0] :
+                                 1.);
+                            node.normal += face_values.shape_value(k[0], q) *
+                                           dA * face_values.normal_vector(q);
+                            for (const auto &[other, l] : nodes)
+                              node.mass[cell_dofs[l[0]]] +=
+                                face_values.shape_value(k[0], q) *
+                                face_values.shape_value(l[0], q) * dA;
+                          }
                       }
                   }
               }
@@ -285,8 +304,12 @@ namespace glide
             idx.push_back(node.multiplier);
           if (pair.small && pair.surface)
             {
-              // Small sliding: the fixed list of master nodes (R11.3).
+              // Small sliding: the fixed list of master nodes (R11.3), and
+              // the averaging region of surface to surface.
               pair.coupled[i] = pair.anchors[i].list;
+              for (const auto k : pair.anchors[i].region)
+                for (unsigned int d = 0; d < dim; ++d)
+                  idx.push_back(pair.nodes[k].dofs[d]);
               for (const auto k : pair.coupled[i])
                 for (unsigned int d = 0; d < dim; ++d)
                   idx.push_back(pair.surface->get_nodes()[k].dofs[d]);
@@ -414,9 +437,23 @@ namespace glide
         const auto &a = pair.anchors[&node - pair.nodes.data()];
         s.found       = a.found;
         s.gap         = std::numeric_limits<double>::infinity();
+        s.point       = s.x;
+        if (a.sts)
+          {
+            // Surface to surface: the participation-weighted centre of the
+            // averaging region.
+            s.point = Point<dim>();
+            for (unsigned int k = 0; k < a.region.size(); ++k)
+              {
+                const auto &other = pair.nodes[a.region[k]];
+                for (unsigned int d = 0; d < dim; ++d)
+                  s.point[d] +=
+                    a.participation[k] * (other.X[d] + U[other.dofs[d]]);
+              }
+          }
         if (a.found && pair.surface)
           {
-            const auto plane = pair.planes->plane(a, s.x);
+            const auto plane = pair.planes->plane(a, s.point);
             s.gap            = plane.gap;
             s.normal         = plane.normal;
             s.anchor         = plane.point;
@@ -482,14 +519,27 @@ namespace glide
   Contact<dim>::linearize(const Pair                                 &pair,
                           const SlaveNode                            &node,
                           const NodeState                            &s,
+                          const VectorType                           &U,
                           typename MasterSurface<dim>::Linearization &l) const
   {
     if (pair.small && pair.surface)
       {
-        pair.planes->linearize(pair.anchors[&node - pair.nodes.data()],
-                               s.x,
-                               node.dofs,
-                               l);
+        const auto &a = pair.anchors[&node - pair.nodes.data()];
+        std::vector<
+          std::pair<typename SmallSliding<dim>::SlaveDofs, Point<dim>>>
+          slaves;
+        if (a.sts)
+          for (const auto k : a.region)
+            {
+              const auto &other = pair.nodes[k];
+              Point<dim>  x     = other.X;
+              for (unsigned int d = 0; d < dim; ++d)
+                x[d] += U[other.dofs[d]];
+              slaves.emplace_back(other.dofs, x);
+            }
+        else
+          slaves.emplace_back(node.dofs, s.x);
+        pair.planes->linearize(a, slaves, l);
         return;
       }
     if (pair.surface)
@@ -540,7 +590,7 @@ namespace glide
               {
                 s = state(pair, node, U);
                 if (s.found)
-                  linearize(pair, node, s, l);
+                  linearize(pair, node, s, U, l);
               }
             catch (const std::exception &e)
               {
@@ -742,7 +792,7 @@ namespace glide
               double                slide = 0.;
               for (unsigned int a = 0; a < dim - 1; ++a)
                 {
-                  offset[a] = (s.x - s.anchor) * s.tangents[a];
+                  offset[a] = (s.point - s.anchor) * s.tangents[a];
                   slide += offset[a] * offset[a];
                 }
               slide = std::sqrt(slide);
@@ -825,18 +875,33 @@ namespace glide
       {
         if (pair.master)
           pair.master->set_time(time);
+        // The normal contact force on each slave node: its constraint's
+        // force, or (surface to surface) the participation-weighted share
+        // of the forces of every constraint whose region holds it.
+        std::vector<NodeState> states;
+        std::vector<double>    nodal(pair.nodes.size(), 0.);
+        for (unsigned int i = 0; i < pair.nodes.size(); ++i)
+          {
+            states.push_back(state(pair, pair.nodes[i], U));
+            const auto *a = pair.small ? &pair.anchors[i] : nullptr;
+            if (a && a->sts)
+              for (unsigned int k = 0; k < a->region.size(); ++k)
+                nodal[a->region[k]] += a->participation[k] * states[i].lambda;
+            else
+              nodal[i] += states[i].lambda;
+          }
         std::vector<double> local;
         for (unsigned int i = 0; i < pair.nodes.size(); ++i)
           {
-            const auto     &node = pair.nodes[i];
-            const NodeState s    = state(pair, node, U);
+            const auto      &node = pair.nodes[i];
+            const NodeState &s    = states[i];
             for (unsigned int d = 0; d < dim; ++d)
               local.push_back(node.X[d]);
             for (unsigned int d = 0; d < dim; ++d)
               local.push_back(s.x[d]);
             local.push_back(s.gap);
-            local.push_back(s.lambda);
-            local.push_back(s.lambda / node.area);
+            local.push_back(nodal[i]);
+            local.push_back(nodal[i] / node.area);
             local.push_back(s.closed ? 1. : 0.);
             local.push_back(pair.slip[i]);
             for (unsigned int d = 0; d < dim; ++d)
@@ -974,7 +1039,10 @@ namespace glide
                         "infinitesimal sliding (small sliding in a "
                         "geometrically linear scene: planes and load-transfer "
                         "weights fixed)";
-        e.push_back("contact pair " + p.name + " (node to surface, " + sliding +
+        const std::string formulation = p.formulation == "surface to surface" ?
+                                          "surface to surface, " :
+                                          "node to surface, ";
+        e.push_back("contact pair " + p.name + " (" + formulation + sliding +
                     ", " + p.master + ", " +
                     (p.enforcement == Enforcement::hard ? "hard" : "penalty") +
                     ", " +
@@ -1014,6 +1082,101 @@ namespace glide
     if (list.size() > 20)
       text += ", ...";
     messages.push_back(text);
+  }
+
+  template <int dim>
+  void
+  Contact<dim>::setup_surface_to_surface(Pair &pair)
+  {
+    const auto &p = *pair.parameters;
+    const bool  node_based =
+      std::any_of(scene.node_sets.begin(),
+                  scene.node_sets.end(),
+                  [&](const auto &n) { return n.name == p.slave; });
+    // Slave DoFs on symmetry planes (R9.3).
+    std::array<std::set<types::global_dof_index>, dim> symmetric;
+    const auto &dof_handler = elasticity.get_dof_handler();
+    std::vector<types::global_dof_index> cell_dofs(
+      dof_handler.get_fe().n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (!cell->is_artificial())
+        for (const auto f : cell->face_indices())
+          if (cell->face(f)->at_boundary())
+            for (unsigned int c = 0; c < dim; ++c)
+              for (const auto id : elasticity.symmetry_boundary_ids(c))
+                if (id == cell->face(f)->boundary_id())
+                  {
+                    cell->get_dof_indices(cell_dofs);
+                    for (const auto &[base, k] :
+                         face_node_indices<dim>(dof_handler.get_fe(), cell, f))
+                      symmetric[c].insert(cell_dofs[k[c]]);
+                  }
+    std::map<types::global_dof_index, unsigned int> index;
+    for (unsigned int i = 0; i < pair.nodes.size(); ++i)
+      index[pair.nodes[i].dofs[0]] = i;
+
+    unsigned int n_node_based = 0, n_missed = 0, n_same = 0;
+    for (unsigned int i = 0; i < pair.nodes.size(); ++i)
+      {
+        const auto &node = pair.nodes[i];
+        if (node_based)
+          {
+            ++n_node_based;
+            pair.anchors.push_back(pair.planes->anchor(node.X));
+            continue;
+          }
+        // The averaging region (R9.1): the node and its neighbours on the
+        // slave surface, participation int N_i N_k dA / int N_i dA.
+        std::vector<Point<dim>>   X{node.X};
+        std::vector<unsigned int> region{i};
+        std::vector<double>       phi{node.mass.at(node.dofs[0])};
+        for (const auto &[dof, m] : node.mass)
+          if (dof != node.dofs[0] && index.count(dof))
+            {
+              region.push_back(index[dof]);
+              X.push_back(pair.nodes[index[dof]].X);
+              phi.push_back(m);
+            }
+        double total = 0.;
+        for (const double x : phi)
+          total += x;
+        for (auto &x : phi)
+          x /= total;
+        std::array<bool, dim> on_plane;
+        for (unsigned int c = 0; c < dim; ++c)
+          on_plane[c] = symmetric[c].count(node.dofs[c]) > 0;
+        typename SmallSliding<dim>::Fallback reason;
+        auto                                 a = pair.planes->anchor_sts(
+          X, phi, node.normal / node.normal.norm(), on_plane, reason);
+        if (a.found)
+          {
+            a.region        = region;
+            a.participation = phi;
+            pair.anchors.push_back(a);
+            continue;
+          }
+        // R9.4: node to surface for this constraint.
+        a = pair.planes->anchor(node.X);
+        if (reason == SmallSliding<dim>::Fallback::same_direction)
+          ++n_same;
+        else if (a.found)
+          ++n_missed;
+        pair.anchors.push_back(a);
+      }
+    n_node_based = Utilities::MPI::sum(n_node_based, comm);
+    n_missed     = Utilities::MPI::sum(n_missed, comm);
+    n_same       = Utilities::MPI::sum(n_same, comm);
+    if (n_node_based + n_missed + n_same > 0 &&
+        Utilities::MPI::this_mpi_process(comm) == 0)
+      messages.push_back(
+        "note: contact pair '" + p.name + "': surface to surface: " +
+        std::to_string(n_node_based + n_missed + n_same) +
+        " constraint(s) fall back to node to surface (R9.4): " +
+        std::to_string(n_node_based) + " of a node-based slave surface, " +
+        std::to_string(n_missed) +
+        " where the projection along the slave normal misses the master, " +
+        std::to_string(n_same) +
+        " where slave and master normals point the same way");
   }
 
   template <int dim>
@@ -1059,8 +1222,11 @@ namespace glide
                                                 AnalysisType::axisymmetric);
         // The only search of small sliding, once (counted as search time).
         const auto start = std::chrono::steady_clock::now();
-        for (const auto &node : pair.nodes)
-          pair.anchors.push_back(pair.planes->anchor(node.X));
+        if (p.formulation == "surface to surface")
+          setup_surface_to_surface(pair);
+        else
+          for (const auto &node : pair.nodes)
+            pair.anchors.push_back(pair.planes->anchor(node.X));
         searching += std::chrono::steady_clock::now() - start;
       }
     else

@@ -1,6 +1,9 @@
 #include <glide/contact/facet_basis.h>
 #include <glide/contact/small_sliding.h>
 
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
 #include <Sacado.hpp>
 
 #include <algorithm>
@@ -369,28 +372,14 @@ namespace glide
       list.insert(facets[f].nodes.begin(), facets[f].nodes.end());
     a.list.assign(list.begin(), list.end());
 
-    // Anchor point, plane normal and its components in the facet's frame.
+    // Anchor point and plane normal.
     std::vector<double>                      N;
     std::vector<std::array<double, dim - 1>> dN;
     facet_basis<dim, double>(p, a.xi, N, dN);
-    std::array<std::array<double, dim>, dim - 1> A{};
     for (unsigned int j = 0; j < N.size(); ++j)
-      {
-        a.X0 += N[j] * nodes[F.nodes[j]].X;
-        for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
-          for (unsigned int d = 0; d < dim; ++d)
-            A[alpha][d] += dN[j][alpha] * nodes[F.nodes[j]].X[d];
-      }
-    a.N0                = normal_field(a.facet, a.xi);
-    const auto e        = facet_frame<double, dim>(A);
-    const auto tangents = contact_tangents<dim>(a.N0);
-    for (unsigned int i = 0; i < dim; ++i)
-      for (unsigned int d = 0; d < dim; ++d)
-        {
-          a.frame[i] += a.N0[d] * e[i][d];
-          for (unsigned int t = 0; t < dim - 1; ++t)
-            a.tangent_frame[t][i] += tangents[t][d] * e[i][d];
-        }
+      a.X0 += N[j] * nodes[F.nodes[j]].X;
+    a.N0 = normal_field(a.facet, a.xi);
+    set_frame(a);
 
     // Initial weights (R6.3).
     std::array<double, dim> xs, n, x0;
@@ -411,6 +400,26 @@ namespace glide
       n,
       x0,
       a.weights);
+    return a;
+  }
+
+  template <int dim>
+  void
+  SmallSliding<dim>::set_frame(Anchor &a) const
+  {
+    const auto &nodes = surface.get_nodes();
+    const auto &F     = surface.get_facets()[a.facet];
+    // N0 and the initial tangents in the facet's frame at the anchor.
+    const auto e        = anchor_frame(a, true);
+    const auto tangents = contact_tangents<dim>(a.N0);
+    a.frame             = {};
+    a.tangent_frame     = {};
+    for (unsigned int i = 0; i < dim; ++i)
+      {
+        a.frame[i] = a.N0 * e[i];
+        for (unsigned int t = 0; t < dim - 1; ++t)
+          a.tangent_frame[t][i] = tangents[t] * e[i];
+      }
 
     // R12.2: one facet length, less where the master turns by more than
     // 10 degrees over the facet.
@@ -425,6 +434,184 @@ namespace glide
         }
     const double turn = 10. * numbers::PI / 180.;
     a.limit           = size * std::min(1., turn / std::max(angle, 1e-300));
+  }
+
+  template <int dim>
+  bool
+  SmallSliding<dim>::ray(const Point<dim>     &X,
+                         const Tensor<1, dim> &direction,
+                         unsigned int         &facet,
+                         Xi                   &xi,
+                         double               &t) const
+  {
+    namespace bgi                                   = boost::geometry::index;
+    const auto                              &facets = surface.get_facets();
+    const auto                              &nodes  = surface.get_nodes();
+    const auto                               p      = surface.degree();
+    bool                                     found  = false;
+    std::set<unsigned int>                   tried;
+    std::vector<double>                      N;
+    std::vector<std::array<double, dim - 1>> dN;
+    for (double radius = 1.5 * surface.facet_size();; radius *= 2.)
+      {
+        Point<dim> lo = X, hi = X;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            lo[d] -= radius;
+            hi[d] += radius;
+          }
+        std::vector<Leaf> candidates;
+        tree.query(bgi::intersects(BoundingBox<dim>(std::make_pair(lo, hi))),
+                   std::back_inserter(candidates));
+        std::sort(candidates.begin(),
+                  candidates.end(),
+                  [](const Leaf &x, const Leaf &y) {
+                    return x.second < y.second;
+                  });
+        for (const auto &c : candidates)
+          {
+            if (!tried.insert(c.second).second)
+              continue;
+            // Newton on x_F(s) - X - tau d = 0 for (s, tau).
+            const auto &F = facets[c.second];
+            Xi          s;
+            s.fill(0.5);
+            double tau       = 0.;
+            bool   converged = false;
+            for (unsigned int it = 0; it < 30 && !converged; ++it)
+              {
+                facet_basis<dim, double>(p, s, N, dN);
+                Tensor<1, dim>                      R;
+                std::array<Tensor<1, dim>, dim - 1> A;
+                for (unsigned int j = 0; j < N.size(); ++j)
+                  {
+                    const Point<dim> &y = nodes[F.nodes[j]].X;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      {
+                        R[d] += N[j] * y[d];
+                        for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
+                          A[alpha][d] += dN[j][alpha] * y[d];
+                      }
+                  }
+                R -= X + tau * direction;
+                FullMatrix<double> J(dim, dim);
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
+                      J(d, alpha) = A[alpha][d];
+                    J(d, dim - 1) = -direction[d];
+                  }
+                if (std::abs(J.determinant()) < 1e-300)
+                  break;
+                FullMatrix<double> inverse(dim, dim);
+                inverse.invert(J);
+                Vector<double> r(dim), step(dim);
+                for (unsigned int d = 0; d < dim; ++d)
+                  r(d) = -R[d];
+                inverse.vmult(step, r);
+                double size = 0.;
+                for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
+                  {
+                    s[alpha] = std::clamp(s[alpha] + step(alpha), -0.5, 1.5);
+                    size     = std::max(size, std::abs(step(alpha)));
+                  }
+                tau += step(dim - 1);
+                converged = size < 1e-13 &&
+                            std::abs(step(dim - 1)) < 1e-13 * (1. + radius);
+              }
+            if (!converged)
+              continue;
+            bool inside = true;
+            for (auto &v : s)
+              {
+                inside = inside && v >= -1e-9 && v <= 1. + 1e-9;
+                v      = std::clamp(v, 0., 1.);
+              }
+            if (inside && (!found || std::abs(tau) < std::abs(t)))
+              {
+                found = true;
+                facet = c.second;
+                xi    = s;
+                t     = tau;
+              }
+          }
+        if (found || tried.size() == facets.size())
+          break;
+      }
+    return found;
+  }
+
+  template <int dim>
+  typename SmallSliding<dim>::Anchor
+  SmallSliding<dim>::anchor_sts(const std::vector<Point<dim>> &X,
+                                const std::vector<double>     &phi,
+                                const Tensor<1, dim>          &slave_normal,
+                                const std::array<bool, dim>   &symmetric,
+                                Fallback                      &reason) const
+  {
+    const auto &facets = surface.get_facets();
+    const auto &nodes  = surface.get_nodes();
+    const auto  p      = surface.degree();
+    Anchor      a;
+    reason = Fallback::missed;
+    // Where each node of the averaging region, projected along the slave
+    // normal, lands on the master.
+    std::vector<unsigned int> landing_facet(X.size());
+    std::vector<Xi>           landing_xi(X.size());
+    for (unsigned int k = 0; k < X.size(); ++k)
+      {
+        double t;
+        if (!ray(X[k], slave_normal, landing_facet[k], landing_xi[k], t))
+          return a;
+      }
+    // Single-sided surfaces face each other: the master normal where the
+    // constraint's own node lands must oppose the slave normal.
+    std::vector<double>                      N;
+    std::vector<std::array<double, dim - 1>> dN;
+    a.facet = landing_facet[0];
+    a.xi    = landing_xi[0];
+    if (anchor_frame(a, true)[dim - 1] * slave_normal >= 0.)
+      {
+        reason = Fallback::same_direction;
+        return a;
+      }
+
+    // The anchor: the weighted centre of the landing zone; the master
+    // weights: the landing points' shape functions, weighted likewise.
+    std::map<unsigned int, double> weight;
+    Point<dim>                     centre;
+    for (unsigned int k = 0; k < X.size(); ++k)
+      {
+        facet_basis<dim, double>(p, landing_xi[k], N, dN);
+        const auto &F = facets[landing_facet[k]];
+        for (unsigned int j = 0; j < N.size(); ++j)
+          {
+            weight[F.nodes[j]] += phi[k] * N[j];
+            a.X0 += phi[k] * N[j] * nodes[F.nodes[j]].X;
+          }
+        centre += phi[k] * X[k];
+      }
+    for (const auto &[node, w] : weight)
+      {
+        a.list.push_back(node);
+        a.weights.push_back(w);
+      }
+    // Contact direction: from the anchor to the region's centre, oriented
+    // against the slave normal (R9.2), in symmetry planes (R9.3).
+    Tensor<1, dim> n = centre - a.X0;
+    if (n.norm() <= 1e-8 * surface.facet_size())
+      n = -slave_normal;
+    if (n * slave_normal > 0.)
+      n = -n;
+    for (unsigned int c = 0; c < dim; ++c)
+      if (symmetric[c])
+        n[c] = 0.;
+    a.N0    = n / n.norm();
+    a.sts   = true;
+    a.found = true;
+    a.facets.push_back(a.facet);
+    set_frame(a);
+    reason = Fallback::none;
     return a;
   }
 
@@ -448,14 +635,37 @@ namespace glide
       return std::lower_bound(a.list.begin(), a.list.end(), k) - a.list.begin();
     };
 
-    if (fixed_plane)
+    if (fixed_plane || a.sts)
       {
-        // Infinitesimal sliding: the initial plane, moved by the weighted
-        // master displacements.
+        // Infinitesimal sliding, and surface to surface: the initial plane
+        // moved by the weighted master displacements; surface to surface
+        // in a nonlinear scene turns it with the anchor facet.
         for (unsigned int d = 0; d < dim; ++d)
           {
             n[d]  = a.N0[d];
             x0[d] = a.X0[d];
+          }
+        if (!fixed_plane)
+          {
+            const auto                              &F = facets[a.facet];
+            std::vector<double>                      N;
+            std::vector<std::array<double, dim - 1>> dN;
+            facet_basis<dim, double>(p, a.xi, N, dN);
+            std::array<std::array<T, dim>, dim - 1> A;
+            for (auto &v : A)
+              v.fill(T(0.));
+            for (unsigned int j = 0; j < N.size(); ++j)
+              {
+                const auto y = pos(F.nodes[j]);
+                for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
+                  for (unsigned int d = 0; d < dim; ++d)
+                    A[alpha][d] += dN[j][alpha] * y[d];
+              }
+            const auto e = facet_frame<T, dim>(A);
+            n.fill(T(0.));
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int d = 0; d < dim; ++d)
+                n[d] += a.frame[i] * e[i][d];
           }
         for (unsigned int m = 0; m < a.list.size(); ++m)
           {
@@ -668,17 +878,25 @@ namespace glide
   template <int dim>
   void
   SmallSliding<dim>::linearize(
-    const Anchor                                   &a,
-    const Point<dim>                               &x,
-    const std::array<types::global_dof_index, dim> &slave_dofs,
-    Linearization                                  &l) const
+    const Anchor                                        &a,
+    const std::vector<std::pair<SlaveDofs, Point<dim>>> &slaves,
+    Linearization                                       &l) const
   {
-    const auto          &positions = surface.get_positions();
-    const auto          &nodes     = surface.get_nodes();
-    const unsigned int   n_var     = dim * (1 + a.list.size());
+    const auto        &positions = surface.get_positions();
+    const auto        &nodes     = surface.get_nodes();
+    const unsigned int n_slave   = slaves.size();
+    const unsigned int n_var     = dim * (n_slave + a.list.size());
+    // The constraint's slave point: the node, or the participation-weighted
+    // centre of the averaging region.
     std::array<Fad, dim> xs;
-    for (unsigned int d = 0; d < dim; ++d)
-      xs[d] = Fad(n_var, d, x[d]);
+    for (auto &v : xs)
+      v = Fad(0.);
+    for (unsigned int k = 0; k < n_slave; ++k)
+      {
+        const double phi = a.sts ? a.participation[k] : 1.;
+        for (unsigned int d = 0; d < dim; ++d)
+          xs[d] += phi * Fad(n_var, dim * k + d, slaves[k].second[d]);
+      }
     Fad                  gap;
     std::array<Fad, dim> n, x0;
     std::vector<Fad>     w;
@@ -690,7 +908,7 @@ namespace glide
           std::lower_bound(a.list.begin(), a.list.end(), k) - a.list.begin();
         std::array<Fad, dim> y;
         for (unsigned int d = 0; d < dim; ++d)
-          y[d] = Fad(n_var, dim * (1 + m) + d, positions[k][d]);
+          y[d] = Fad(n_var, dim * (n_slave + m) + d, positions[k][d]);
         return y;
       },
       infinitesimal,
@@ -699,7 +917,9 @@ namespace glide
       x0,
       w);
 
-    l.dofs.assign(slave_dofs.begin(), slave_dofs.end());
+    l.dofs.clear();
+    for (const auto &slave : slaves)
+      l.dofs.insert(l.dofs.end(), slave.first.begin(), slave.first.end());
     for (const auto k : a.list)
       for (unsigned int d = 0; d < dim; ++d)
         l.dofs.push_back(nodes[k].dofs[d]);
@@ -709,11 +929,13 @@ namespace glide
     l.dgap.reinit(n_var);
     l.force.reinit(n_var);
     l.dforce.reinit(n_var, n_var);
-    // Force direction: n on the slave node, -w_m n on master node m.
+    // Force direction: phi_k n on slave node k, -w_m n on master node m.
     for (unsigned int i = 0; i < n_var; ++i)
       {
         const unsigned int m = i / dim, d = i % dim;
-        const Fad          G = m == 0 ? n[d] : Fad(-w[m - 1] * n[d]);
+        const Fad          G = m < n_slave ?
+                                 Fad((a.sts ? a.participation[m] : 1.) * n[d]) :
+                                 Fad(-w[m - n_slave] * n[d]);
         l.force(i)           = G.val();
         l.dgap(i)            = gap.dx(i);
         for (unsigned int j = 0; j < n_var; ++j)

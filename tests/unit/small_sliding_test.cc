@@ -94,15 +94,32 @@ namespace
   void
   check_jacobian(const unsigned int degree,
                  const bool         nonlinear,
-                 const std::string &enforcement)
+                 const std::string &enforcement,
+                 const bool         sts = false)
   {
-    const std::string tag =
-      std::to_string(dim) + "D Q" + std::to_string(degree) +
-      (nonlinear ? " small" : " infinitesimal") + " " + enforcement;
+    const std::string tag = std::to_string(dim) + "D Q" +
+                            std::to_string(degree) +
+                            (nonlinear ? " small" : " infinitesimal") + " " +
+                            enforcement + (sts ? " STS" : " NTS");
     glide_test::ContactFixture<dim> s(
-      ball_on_block(dim, degree, nonlinear, enforcement),
+      ball_on_block(dim,
+                    degree,
+                    nonlinear,
+                    enforcement,
+                    "fixed",
+                    sts ? "  set Formulation = surface to surface\n" : ""),
       "small_" + std::to_string(dim) + std::to_string(degree) +
-        (nonlinear ? "n" : "l") + enforcement + ".prm");
+        (nonlinear ? "n" : "l") + enforcement + (sts ? "sts" : "") + ".prm");
+    if (sts)
+      {
+        unsigned int averaged = 0;
+        for (const auto &a : s.contact.anchors(0))
+          averaged += a.sts ? 1 : 0;
+        // In 3D most block-top regions reach beyond the octant and fall
+        // back to node to surface.
+        EXPECT_GE(averaged, dim == 2 ? 4u : 1u)
+          << tag << ": surface-to-surface constraints";
+      }
     // In 3D the ball is an octant x, z >= 0.05: block-top nodes at x = 0 or
     // z = 0 lie beside it.
     unsigned int anchored = 0;
@@ -140,6 +157,80 @@ TEST(SmallSliding, JacobianMatchesFiniteDifferences)
       }
   check_jacobian<2>(1, true, "penalty");
   check_jacobian<3>(1, true, "penalty");
+}
+
+// R9.1, R9.2: the same for surface to surface (averaging regions with
+// several slave nodes per constraint, master weights of the landing zone,
+// the plane turning with the anchor facet in nonlinear scenes).
+TEST(SmallSliding, SurfaceToSurfaceJacobianMatchesFiniteDifferences)
+{
+  for (const unsigned int degree : {1u, 2u})
+    for (const bool nonlinear : {true, false})
+      {
+        check_jacobian<2>(degree, nonlinear, "hard", true);
+        check_jacobian<3>(degree, nonlinear, "hard", true);
+      }
+  check_jacobian<2>(2, true, "penalty", true);
+}
+
+// R9.1-R9.4 on a flat master (the block's top, facets 0.2 long): a region
+// of three slave points 0.1 above it, projected along the slave normal
+// (0, -1), lands straight below; the anchor is the participation-weighted
+// centre of the landing points, the contact direction (0, 1), the master
+// weights those of the landing points (summing to 1, centred on the
+// anchor). A tilted slave normal with the slave node on an XSYMM plane
+// gives a direction in that plane. A slave normal along the master's own
+// normal falls back (same direction), and so does a region that projects
+// past the master's end (missed).
+TEST(SmallSliding, SurfaceToSurfaceAnchors)
+{
+  glide_test::ContactFixture<2> s(ball_on_block(2, 1, false, "hard"),
+                                  "small_sts_anchor.prm");
+  const auto            top = glide_test::master_of<2>(s, "block.top", 0.);
+  const SmallSliding<2> planes(*top, {}, true, false);
+  using Fallback = SmallSliding<2>::Fallback;
+  const std::vector<Point<2>> X{Point<2>(0.3, 1.1),
+                                Point<2>(0.25, 1.1),
+                                Point<2>(0.35, 1.1)};
+  const std::vector<double>   phi{2. / 3., 1. / 6., 1. / 6.};
+  Tensor<1, 2>                down;
+  down[1] = -1.;
+  Fallback   reason;
+  const auto a = planes.anchor_sts(X, phi, down, {{false, false}}, reason);
+  ASSERT_TRUE(a.found);
+  EXPECT_EQ(reason, Fallback::none);
+  EXPECT_TRUE(a.sts);
+  EXPECT_NEAR(a.X0[0], 0.3, 1e-12);
+  EXPECT_NEAR(a.X0[1], 1., 1e-12);
+  EXPECT_NEAR(a.N0[0], 0., 1e-12);
+  EXPECT_NEAR(a.N0[1], 1., 1e-12);
+  double sum = 0., moment = 0.;
+  for (unsigned int m = 0; m < a.list.size(); ++m)
+    {
+      sum += a.weights[m];
+      moment += a.weights[m] * top->get_nodes()[a.list[m]].X[0];
+    }
+  EXPECT_NEAR(sum, 1., 1e-12);
+  EXPECT_NEAR(moment, 0.3, 1e-12) << "the weights' centre is the anchor";
+
+  Tensor<1, 2> tilted;
+  tilted[0] = 0.3;
+  tilted[1] = -1.;
+  const auto b =
+    planes.anchor_sts(X, phi, tilted / tilted.norm(), {{true, false}}, reason);
+  ASSERT_TRUE(b.found);
+  EXPECT_NEAR(b.N0[0], 0., 1e-12) << "R9.3: in the symmetry plane";
+  EXPECT_NEAR(b.N0[1], 1., 1e-12);
+  // Slave normal (0, 1): along the master's outward normal.
+  const auto c = planes.anchor_sts(X, phi, -down, {{false, false}}, reason);
+  EXPECT_FALSE(c.found);
+  EXPECT_EQ(reason, Fallback::same_direction);
+  const std::vector<Point<2>> off{Point<2>(0.98, 1.1),
+                                  Point<2>(0.93, 1.1),
+                                  Point<2>(1.03, 1.1)};
+  const auto d = planes.anchor_sts(off, phi, down, {{false, false}}, reason);
+  EXPECT_FALSE(d.found);
+  EXPECT_EQ(reason, Fallback::missed);
 }
 
 // R7.1-R7.3: anchors on a circle of equal facets lie on the ray from the

@@ -167,6 +167,10 @@ namespace glide
         dealii::numbers::invalid_dof_index;
       double c = 0.; ///< NCP constant
       double k = 0.; ///< penalty stiffness * area
+      /// Surface slaves: area-weighted outward normal, and int N_a N_b dA
+      /// with the neighbours b on the slave surface (keyed by x DoF).
+      dealii::Tensor<1, dim>                            normal;
+      std::map<dealii::types::global_dof_index, double> mass;
     };
     struct Pair
     {
@@ -212,6 +216,9 @@ namespace glide
       typename RigidMaster<dim>::Projection   rigid;
       typename MasterSurface<dim>::Projection projection;
       dealii::Point<dim> anchor; ///< small sliding: current anchor point
+      /// The constraint's slave point: the node, or (surface to surface)
+      /// the weighted centre of its averaging region.
+      dealii::Point<dim> point;
       /// Local tangent directions (R13.1).
       std::array<dealii::Tensor<1, dim>, dim - 1> tangents;
       double                                      lambda = 0.; ///< normal force
@@ -222,11 +229,13 @@ namespace glide
     NodeState
     state(const Pair &pair, const SlaveNode &node, const VectorType &U) const;
 
-    /// Gap and force direction with their derivatives at state @p s.
+    /// Gap and force direction with their derivatives at state @p s of
+    /// iterate @p U.
     void
     linearize(const Pair                                 &pair,
               const SlaveNode                            &node,
               const NodeState                            &s,
+              const VectorType                           &U,
               typename MasterSurface<dim>::Linearization &l) const;
 
     /// Displacement component @p i at the iterate of the last
@@ -237,6 +246,11 @@ namespace glide
     /// Anchors and tangent planes of a small-sliding pair (R6-R8).
     void
     setup_small_sliding(Pair &pair, const std::string &path);
+
+    /// Surface-to-surface anchors of a small-sliding pair (R9), with the
+    /// fall-back to node to surface counted in the log (R9.4).
+    void
+    setup_surface_to_surface(Pair &pair);
 
     /// Add a log message listing @p nodes (gathered from all processes).
     void

@@ -88,6 +88,22 @@ namespace glide
       /// Distance along the plane from the anchor beyond which the slide is
       /// reported as not small (R12.2).
       double limit = 0.;
+      /// Surface to surface (R9): the slave nodes of the averaging region
+      /// (indices in the caller's slave node list, the constraint's own
+      /// node first) and their constant participation factors; the master
+      /// weights are those of the region's landing zone, fixed.
+      bool                      sts = false;
+      std::vector<unsigned int> region;
+      std::vector<double>       participation;
+    };
+
+    /// Why a surface-to-surface constraint falls back to node to surface
+    /// (R9.4; a node-based slave surface is the caller's case).
+    enum class Fallback
+    {
+      none,
+      missed,        ///< the projection along the slave normal misses
+      same_direction ///< slave and master normals point the same way
     };
 
     /// @p user_normals: master node index -> prescribed normal (R8.1).
@@ -101,6 +117,23 @@ namespace glide
     /// found if no N(x) of the master passes through it.
     Anchor
     anchor(const dealii::Point<dim> &X) const;
+
+    /// Surface-to-surface anchor (R9.1-R9.3) of the averaging region with
+    /// initial positions @p X (the constraint's own node first) and
+    /// participation factors @p phi: each node projected along the slave
+    /// normal @p slave_normal (outward, towards the master) lands on the
+    /// master; the anchor is the participation-weighted centre of the
+    /// landing points, the contact direction runs from it to the region's
+    /// weighted centre (along -slave_normal where they coincide) and lies
+    /// in the symmetry planes marked in @p symmetric. Not found, with
+    /// @p reason, where a region node's projection misses the master or
+    /// the master normal points the way of the slave normal.
+    Anchor
+    anchor_sts(const std::vector<dealii::Point<dim>> &X,
+               const std::vector<double>             &phi,
+               const dealii::Tensor<1, dim>          &slave_normal,
+               const std::array<bool, dim>           &symmetric,
+               Fallback                              &reason) const;
 
     /// Nodal normals of the master (R7.1, R8).
     const std::vector<dealii::Tensor<1, dim>> &
@@ -131,13 +164,15 @@ namespace glide
     weights(const Anchor &a, const dealii::Point<dim> &x) const;
 
     /// Gap and force vector with their derivatives (slave DoFs first, then
-    /// the list's master nodes).
+    /// the list's master nodes). @p slaves: DoFs and current position of
+    /// the constraint's slave node, or (surface to surface) of every node
+    /// of its averaging region in the order of `a.region`.
+    using SlaveDofs = std::array<dealii::types::global_dof_index, dim>;
     void
     linearize(
-      const Anchor                                           &a,
-      const dealii::Point<dim>                               &x,
-      const std::array<dealii::types::global_dof_index, dim> &slave_dofs,
-      Linearization                                          &l) const;
+      const Anchor                                                &a,
+      const std::vector<std::pair<SlaveDofs, dealii::Point<dim>>> &slaves,
+      Linearization                                               &l) const;
 
     bool
     is_infinitesimal() const
@@ -164,6 +199,20 @@ namespace glide
     /// @p initial).
     std::array<dealii::Tensor<1, dim>, dim>
     anchor_frame(const Anchor &a, const bool initial) const;
+
+    /// The point where the line X + t d meets the master (smallest |t|):
+    /// facet, parameters and t; false if it misses.
+    bool
+    ray(const dealii::Point<dim>     &X,
+        const dealii::Tensor<1, dim> &d,
+        unsigned int                 &facet,
+        Xi                           &xi,
+        double                       &t) const;
+
+    /// Frame, tangent frame and slide limit of @p a from its facet, its
+    /// parameters and N0 (initial configuration).
+    void
+    set_frame(Anchor &a) const;
 
     /// Newton for the anchor on facet @p facet; false if none there.
     bool
