@@ -404,7 +404,8 @@ def case_rigid_punch_meshed():
     the force within 2 % of the analytical punch's (measured 0.6 %). The
     punch's material does not matter: with its Young's modulus 1 (the
     default, 100 times softer than the block) or 1e6 the answer and the
-    iterations are the same, so it is rigid and does not count for E_max."""
+    iterations are the same, so it is rigid and does not count for E_max.
+    Small sliding (issue 4) works against the meshed rigid master too."""
     meshed, log, _ = run(scene_file("rigid-punch-meshed.prm"), "Output/Write VTU=false", name="meshed")
     check("meshed rigid body punch" in log, "the log lists the rigid body")
     exact, _, _ = run(scene_file("rigid-punch.prm"), "Output/Write VTU=false", name="exact")
@@ -418,6 +419,18 @@ def case_rigid_punch_meshed():
         close(m["contact_punch_force_y"], e["contact_punch_force_y"], 0.02, f"force against the analytical punch at t={t}")
         close(st["contact_punch_force_y"], m["contact_punch_force_y"], 1e-9, f"punch material irrelevant at t={t}")
         check(st["kinsol_iterations"] == m["kinsol_iterations"], f"same iterations at t={t}")
+    # Issue 4: small sliding against the meshed rigid master, node to
+    # surface within 2 % of the analytical punch (measured 0.5 %), surface
+    # to surface within 5 % (measured 3.4 %: the averaging regions of the
+    # block's top land on the curved punch over a facet's width).
+    for formulation, tolerance in (("node to surface", 0.02), ("surface to surface", 0.05)):
+        rows, log, _ = run(scene_file("rigid-punch-meshed.prm"), "Output/Write VTU=false",
+                           "Contact pair punch/Sliding=small", f"Contact pair punch/Formulation={formulation}",
+                           name="small-" + formulation.replace(" ", "-"))
+        print(f"measured: small sliding, {formulation}: force {rows[-1]['contact_punch_force_y'] / exact[-1]['contact_punch_force_y']:.4f} of the analytical punch's")
+        close(rows[-1]["contact_punch_force_y"], exact[-1]["contact_punch_force_y"], tolerance,
+              f"small sliding, {formulation}: force against the analytical punch")
+        check(all(r["kinsol_iterations"] <= 4 for r in rows), f"small sliding, {formulation}: at most 4 iterations")
 
 
 def case_rigid_body_rotation():
@@ -836,7 +849,9 @@ def case_surface_to_surface_small_sliding():
     below 10 % (surface to surface does not pass it either: the master
     still receives the load at the landing points, like node to surface);
     total force within 0.1 %.
-    (4) A node-based slave surface falls back to node to surface, counted
+    (4) Axisymmetric with a deformable master on the axis: pressure next to
+    the axis within 15 % of Hertz (measured 0.90).
+    (5) A node-based slave surface falls back to node to surface, counted
     in the log."""
     rows, log, out = run(scene_file("hertz-2d-elastic.prm"), "Output/Write VTU=false",
                          "Contact pair hertz/Sliding=small", "Contact pair hertz/Formulation=surface to surface")
@@ -869,6 +884,22 @@ def case_surface_to_surface_small_sliding():
     print(f"measured: patch test, surface to surface, largest relative pressure error {error:.4f}")
     check(error < 0.10, f"patch test: error {error:.4f} below 10 %")
     close(rows[-1]["contact_interface_force_y"], 1e4, 1e-3, "patch test: total force")
+
+    # Axisymmetric (elastic sphere as the master, ending on the axis): the
+    # averaging blurs the peak at the axis; the pressure next to the axis is
+    # recorded (measured 0.90 of Hertz's; node to surface 0.98) and must be
+    # within 15 %.
+    rows, _, out = run(scene_file("hertz-axisymmetric-elastic.prm"), "Output/Write VTU=false",
+                       "Body block/Refinement/Local refinements=4", "Contact pair hertz/Sliding=small",
+                       "Contact pair hertz/Formulation=surface to surface", name="axi")
+    F = rows[-1]["reaction_ground_y"]
+    a = (3 * F / (4 * e_star)) ** (1 / 3)
+    p0 = 3 * F / (2 * math.pi * a * a)
+    nodes = sorted(contact_nodes(out, "hertz"), key=lambda n: n["X"])
+    ratio = nodes[1]["CPRESS"] / (p0 * math.sqrt(1 - (nodes[1]["X"] / a) ** 2))
+    print(f"measured: axisymmetric, surface to surface, pressure next to the axis {ratio:.3f} of Hertz's")
+    check(abs(ratio - 1) < 0.15, "axisymmetric: pressure next to the axis within 15 %")
+    check(all(r["kinsol_iterations"] <= 6 and r["cut_backs"] == 0 for r in rows), "axisymmetric: at most 6 iterations")
 
     _, log, _ = run(scene_file("concentric-cylinders.prm"), "Output/Write VTU=false",
                     "Node sets=center, top_master, ring_top", "Node set ring_top/Points=0, 1.005",
