@@ -297,21 +297,15 @@ namespace glide
   }
 
   template <int dim>
-  typename SmallSliding<dim>::Anchor
-  SmallSliding<dim>::anchor(const Point<dim> &X) const
+  template <typename Visit>
+  void
+  SmallSliding<dim>::search(const Point<dim> &X, const Visit &visit) const
   {
-    namespace bgi      = boost::geometry::index;
-    const auto &facets = surface.get_facets();
-    const auto &nodes  = surface.get_nodes();
-    const auto  p      = surface.degree();
-    Anchor      a;
-    if (facets.empty())
-      return a;
-
-    // Facets near X first; the search widens until an anchor is found or
-    // every facet has been tried.
+    namespace bgi = boost::geometry::index;
+    // Facets near X first; the search widens until visit() reports a hit
+    // or every facet has been tried.
     std::set<unsigned int> tried;
-    double                 best = std::numeric_limits<double>::max();
+    bool                   hit = false;
     for (double radius = 1.5 * surface.facet_size();; radius *= 2.)
       {
         Point<dim> lo = X, hi = X;
@@ -329,23 +323,36 @@ namespace glide
                     return x.second < y.second;
                   });
         for (const auto &c : candidates)
-          {
-            if (!tried.insert(c.second).second)
-              continue;
-            Xi     xi;
-            double distance;
-            if (anchor_on(c.second, X, xi, distance) &&
-                std::abs(distance) < best)
-              {
-                best    = std::abs(distance);
-                a.found = true;
-                a.facet = c.second;
-                a.xi    = xi;
-              }
-          }
-        if (a.found || tried.size() == facets.size())
-          break;
+          if (tried.insert(c.second).second)
+            hit = visit(c.second) || hit;
+        if (hit || tried.size() == surface.get_facets().size())
+          return;
       }
+  }
+
+  template <int dim>
+  typename SmallSliding<dim>::Anchor
+  SmallSliding<dim>::anchor(const Point<dim> &X) const
+  {
+    const auto &facets = surface.get_facets();
+    const auto &nodes  = surface.get_nodes();
+    const auto  p      = surface.degree();
+    Anchor      a;
+    if (facets.empty())
+      return a;
+
+    double best = std::numeric_limits<double>::max();
+    search(X, [&](const unsigned int facet) {
+      Xi     xi;
+      double distance;
+      if (!anchor_on(facet, X, xi, distance) || std::abs(distance) >= best)
+        return false;
+      best    = std::abs(distance);
+      a.found = true;
+      a.facet = facet;
+      a.xi    = xi;
+      return true;
+    });
     if (!a.found)
       return a;
 
@@ -382,24 +389,7 @@ namespace glide
     set_frame(a);
 
     // Initial weights (R6.3).
-    std::array<double, dim> xs, n, x0;
-    for (unsigned int d = 0; d < dim; ++d)
-      xs[d] = X[d];
-    double gap;
-    evaluate<double>(
-      a,
-      xs,
-      [&](const unsigned int k) {
-        std::array<double, dim> y;
-        for (unsigned int d = 0; d < dim; ++d)
-          y[d] = nodes[k].X[d];
-        return y;
-      },
-      false,
-      gap,
-      n,
-      x0,
-      a.weights);
+    a.weights = evaluate_plane(a, X, true).weights;
     return a;
   }
 
@@ -444,100 +434,76 @@ namespace glide
                          Xi                   &xi,
                          double               &t) const
   {
-    namespace bgi                                   = boost::geometry::index;
     const auto                              &facets = surface.get_facets();
     const auto                              &nodes  = surface.get_nodes();
     const auto                               p      = surface.degree();
     bool                                     found  = false;
-    std::set<unsigned int>                   tried;
     std::vector<double>                      N;
     std::vector<std::array<double, dim - 1>> dN;
-    for (double radius = 1.5 * surface.facet_size();; radius *= 2.)
-      {
-        Point<dim> lo = X, hi = X;
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            lo[d] -= radius;
-            hi[d] += radius;
-          }
-        std::vector<Leaf> candidates;
-        tree.query(bgi::intersects(BoundingBox<dim>(std::make_pair(lo, hi))),
-                   std::back_inserter(candidates));
-        std::sort(candidates.begin(),
-                  candidates.end(),
-                  [](const Leaf &x, const Leaf &y) {
-                    return x.second < y.second;
-                  });
-        for (const auto &c : candidates)
-          {
-            if (!tried.insert(c.second).second)
-              continue;
-            // Newton on x_F(s) - X - tau d = 0 for (s, tau).
-            const auto &F = facets[c.second];
-            Xi          s;
-            s.fill(0.5);
-            double tau       = 0.;
-            bool   converged = false;
-            for (unsigned int it = 0; it < 30 && !converged; ++it)
-              {
-                facet_basis<dim, double>(p, s, N, dN);
-                Tensor<1, dim>                      R;
-                std::array<Tensor<1, dim>, dim - 1> A;
-                for (unsigned int j = 0; j < N.size(); ++j)
-                  {
-                    const Point<dim> &y = nodes[F.nodes[j]].X;
-                    for (unsigned int d = 0; d < dim; ++d)
-                      {
-                        R[d] += N[j] * y[d];
-                        for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
-                          A[alpha][d] += dN[j][alpha] * y[d];
-                      }
-                  }
-                R -= X + tau * direction;
-                FullMatrix<double> J(dim, dim);
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
-                      J(d, alpha) = A[alpha][d];
-                    J(d, dim - 1) = -direction[d];
-                  }
-                if (std::abs(J.determinant()) < 1e-300)
-                  break;
-                FullMatrix<double> inverse(dim, dim);
-                inverse.invert(J);
-                Vector<double> r(dim), step(dim);
-                for (unsigned int d = 0; d < dim; ++d)
-                  r(d) = -R[d];
-                inverse.vmult(step, r);
-                double size = 0.;
-                for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
-                  {
-                    s[alpha] = std::clamp(s[alpha] + step(alpha), -0.5, 1.5);
-                    size     = std::max(size, std::abs(step(alpha)));
-                  }
-                tau += step(dim - 1);
-                converged = size < 1e-13 &&
-                            std::abs(step(dim - 1)) < 1e-13 * (1. + radius);
-              }
-            if (!converged)
-              continue;
-            bool inside = true;
-            for (auto &v : s)
-              {
-                inside = inside && v >= -1e-9 && v <= 1. + 1e-9;
-                v      = std::clamp(v, 0., 1.);
-              }
-            if (inside && (!found || std::abs(tau) < std::abs(t)))
-              {
-                found = true;
-                facet = c.second;
-                xi    = s;
-                t     = tau;
-              }
-          }
-        if (found || tried.size() == facets.size())
-          break;
-      }
+    search(X, [&](const unsigned int candidate) {
+      // Newton on x_F(s) - X - tau d = 0 for (s, tau).
+      const auto &F = facets[candidate];
+      Xi          s;
+      s.fill(0.5);
+      double tau       = 0.;
+      bool   converged = false;
+      for (unsigned int it = 0; it < 30 && !converged; ++it)
+        {
+          facet_basis<dim, double>(p, s, N, dN);
+          Tensor<1, dim>                      R;
+          std::array<Tensor<1, dim>, dim - 1> A;
+          for (unsigned int j = 0; j < N.size(); ++j)
+            {
+              const Point<dim> &y = nodes[F.nodes[j]].X;
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  R[d] += N[j] * y[d];
+                  for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
+                    A[alpha][d] += dN[j][alpha] * y[d];
+                }
+            }
+          R -= X + tau * direction;
+          FullMatrix<double> J(dim, dim);
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
+                J(d, alpha) = A[alpha][d];
+              J(d, dim - 1) = -direction[d];
+            }
+          if (std::abs(J.determinant()) < 1e-300)
+            break;
+          FullMatrix<double> inverse(dim, dim);
+          inverse.invert(J);
+          Vector<double> r(dim), step(dim);
+          for (unsigned int d = 0; d < dim; ++d)
+            r(d) = -R[d];
+          inverse.vmult(step, r);
+          double size = 0.;
+          for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
+            {
+              s[alpha] = std::clamp(s[alpha] + step(alpha), -0.5, 1.5);
+              size     = std::max(size, std::abs(step(alpha)));
+            }
+          tau += step(dim - 1);
+          converged = size < 1e-13 &&
+                      std::abs(step(dim - 1)) < 1e-13 * (1. + std::abs(tau));
+        }
+      if (!converged)
+        return false;
+      bool inside = true;
+      for (auto &v : s)
+        {
+          inside = inside && v >= -1e-9 && v <= 1. + 1e-9;
+          v      = std::clamp(v, 0., 1.);
+        }
+      if (!inside || (found && std::abs(tau) >= std::abs(t)))
+        return false;
+      found = true;
+      facet = candidate;
+      xi    = s;
+      t     = tau;
+      return true;
+    });
     return found;
   }
 
@@ -788,35 +754,42 @@ namespace glide
   typename SmallSliding<dim>::Plane
   SmallSliding<dim>::plane(const Anchor &a, const Point<dim> &x) const
   {
+    return evaluate_plane(a, x, false);
+  }
+
+  template <int dim>
+  typename SmallSliding<dim>::Plane
+  SmallSliding<dim>::evaluate_plane(const Anchor     &a,
+                                    const Point<dim> &x,
+                                    const bool        initial) const
+  {
     const auto             &positions = surface.get_positions();
+    const auto             &nodes     = surface.get_nodes();
     std::array<double, dim> xs, n, x0;
     for (unsigned int d = 0; d < dim; ++d)
       xs[d] = x[d];
-    double              gap;
-    std::vector<double> w;
+    Plane result;
     evaluate<double>(
       a,
       xs,
       [&](const unsigned int k) {
         std::array<double, dim> y;
         for (unsigned int d = 0; d < dim; ++d)
-          y[d] = positions[k][d];
+          y[d] = initial ? nodes[k].X[d] : positions[k][d];
         return y;
       },
-      infinitesimal,
-      gap,
+      infinitesimal && !initial,
+      result.gap,
       n,
       x0,
-      w);
-    Plane result;
-    result.gap = gap;
+      result.weights);
     for (unsigned int d = 0; d < dim; ++d)
       {
         result.point[d]  = x0[d];
         result.normal[d] = n[d];
       }
     // The initial tangents, turned with the facet (R13.1, R10.1).
-    const auto e = anchor_frame(a, infinitesimal);
+    const auto e = anchor_frame(a, initial || infinitesimal);
     for (unsigned int t = 0; t < dim - 1; ++t)
       for (unsigned int i = 0; i < dim; ++i)
         result.tangents[t] += a.tangent_frame[t][i] * e[i];
@@ -852,27 +825,7 @@ namespace glide
   std::vector<double>
   SmallSliding<dim>::weights(const Anchor &a, const Point<dim> &x) const
   {
-    const auto             &positions = surface.get_positions();
-    std::array<double, dim> xs, n, x0;
-    for (unsigned int d = 0; d < dim; ++d)
-      xs[d] = x[d];
-    double              gap;
-    std::vector<double> w;
-    evaluate<double>(
-      a,
-      xs,
-      [&](const unsigned int k) {
-        std::array<double, dim> y;
-        for (unsigned int d = 0; d < dim; ++d)
-          y[d] = positions[k][d];
-        return y;
-      },
-      infinitesimal,
-      gap,
-      n,
-      x0,
-      w);
-    return w;
+    return evaluate_plane(a, x, false).weights;
   }
 
   template <int dim>

@@ -154,6 +154,7 @@ namespace glide
       dealii::Tensor<1, dim>                      normal;
       std::array<dealii::Tensor<1, dim>, dim - 1> tangents;
       double                                      gap = 0.;
+      std::vector<double> weights; ///< load-transfer weights over the list
     };
     Plane
     plane(const Anchor &a, const dealii::Point<dim> &x) const;
@@ -194,11 +195,25 @@ namespace glide
              std::array<T, dim>       &x0,
              std::vector<T>           &w) const;
 
+    /// plane() at the current positions, or at the initial ones if
+    /// @p initial (then with the plane of small sliding).
+    Plane
+    evaluate_plane(const Anchor             &a,
+                   const dealii::Point<dim> &x,
+                   const bool                initial) const;
+
     /// Orthonormal frame of the anchor facet of @p a at its anchor
     /// parameters, at the current positions (initial positions if
     /// @p initial).
     std::array<dealii::Tensor<1, dim>, dim>
     anchor_frame(const Anchor &a, const bool initial) const;
+
+    /// Call @p visit(facet) for the facets near @p X, then further away,
+    /// until it returns true for one (after the current ring) or every
+    /// facet has been visited once.
+    template <typename Visit>
+    void
+    search(const dealii::Point<dim> &X, const Visit &visit) const;
 
     /// The point where the line X + t d meets the master (smallest |t|):
     /// facet, parameters and t; false if it misses.
