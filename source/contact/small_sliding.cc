@@ -584,6 +584,35 @@ namespace glide
   template <int dim>
   template <typename T, typename Positions>
   void
+  SmallSliding<dim>::facet_point(
+    const unsigned int                       facet,
+    const Xi                                &xi,
+    const Positions                         &pos,
+    std::array<T, dim>                      &x,
+    std::array<std::array<T, dim>, dim - 1> &A) const
+  {
+    std::vector<double>                      N;
+    std::vector<std::array<double, dim - 1>> dN;
+    facet_basis<dim, double>(surface.degree(), xi, N, dN);
+    x.fill(T(0.));
+    for (auto &v : A)
+      v.fill(T(0.));
+    const auto &F = surface.get_facets()[facet];
+    for (unsigned int j = 0; j < N.size(); ++j)
+      {
+        const auto y = pos(F.nodes[j]);
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            x[d] += N[j] * y[d];
+            for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
+              A[alpha][d] += dN[j][alpha] * y[d];
+          }
+      }
+  }
+
+  template <int dim>
+  template <typename T, typename Positions>
+  void
   SmallSliding<dim>::evaluate(const Anchor             &a,
                               const std::array<T, dim> &xs,
                               const Positions          &pos,
@@ -613,20 +642,9 @@ namespace glide
           }
         if (!fixed_plane)
           {
-            const auto                              &F = facets[a.facet];
-            std::vector<double>                      N;
-            std::vector<std::array<double, dim - 1>> dN;
-            facet_basis<dim, double>(p, a.xi, N, dN);
+            std::array<T, dim>                      x_facet;
             std::array<std::array<T, dim>, dim - 1> A;
-            for (auto &v : A)
-              v.fill(T(0.));
-            for (unsigned int j = 0; j < N.size(); ++j)
-              {
-                const auto y = pos(F.nodes[j]);
-                for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
-                  for (unsigned int d = 0; d < dim; ++d)
-                    A[alpha][d] += dN[j][alpha] * y[d];
-              }
+            facet_point<T>(a.facet, a.xi, pos, x_facet, A);
             const auto e = facet_frame<T, dim>(A);
             n.fill(T(0.));
             for (unsigned int i = 0; i < dim; ++i)
@@ -648,24 +666,8 @@ namespace glide
 
     // The anchor's material point and the plane normal carried by the
     // facet's frame (R10.1).
-    const auto                              &F = facets[a.facet];
-    std::vector<double>                      N;
-    std::vector<std::array<double, dim - 1>> dN;
-    facet_basis<dim, double>(p, a.xi, N, dN);
     std::array<std::array<T, dim>, dim - 1> A;
-    for (auto &v : A)
-      v.fill(T(0.));
-    x0.fill(T(0.));
-    for (unsigned int j = 0; j < N.size(); ++j)
-      {
-        const auto y = pos(F.nodes[j]);
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            x0[d] += N[j] * y[d];
-            for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
-              A[alpha][d] += dN[j][alpha] * y[d];
-          }
-      }
+    facet_point<T>(a.facet, a.xi, pos, x0, A);
     const auto e = facet_frame<T, dim>(A);
     n.fill(T(0.));
     for (unsigned int i = 0; i < dim; ++i)
@@ -697,22 +699,9 @@ namespace glide
             if (dim == 3)
               c[dim - 2] = double(at / (p + 1)) / p;
           }
-        facet_basis<dim, double>(p, c, N, dN);
         std::array<std::array<T, dim>, dim - 1> b;
         std::array<T, dim>                      xc;
-        for (auto &v : b)
-          v.fill(T(0.));
-        xc.fill(T(0.));
-        for (unsigned int j = 0; j < N.size(); ++j)
-          {
-            const auto y = pos(K.nodes[j]);
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                xc[d] += N[j] * y[d];
-                for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)
-                  b[alpha][d] += dN[j][alpha] * y[d];
-              }
-          }
+        facet_point<T>(a.facets[k], c, pos, xc, b);
         std::array<std::array<T, dim - 1>, dim - 1> G;
         std::array<T, dim - 1>                      r;
         for (unsigned int alpha = 0; alpha < dim - 1; ++alpha)

@@ -100,17 +100,7 @@ namespace
                      std::to_string(int(100 * fraction)) +
                      std::to_string(degree) + enforcement + linearization +
                      (symmetry ? "sym" : "") + ".prm");
-    VectorType   U, v;
-    glide_test::random_contact_state(s.e, s.contact, U, v, 11, 0.01, 0.02);
-    s.contact.set_time(0.);
-    ASSERT_FALSE(s.contact.needs_new_pattern(U)) << tag;
-    const auto [err, ref] =
-      glide_test::contact_jacobian_error(s.e, s.contact, U, v, 1e-7);
-    EXPECT_GT(ref, 0.) << tag;
-    EXPECT_LT(err, 1e-6 * ref) << tag;
-    const auto stats = s.contact.statistics(U);
-    ASSERT_EQ(stats[0].first, "contact_pair_active");
-    EXPECT_GT(std::stoi(stats[0].second), 0) << tag << ": some nodes closed";
+    glide_test::expect_consistent_jacobian(s, tag, 11);
   }
 
   using glide_test::master_of;

@@ -151,3 +151,28 @@ namespace glide_test
       "test");
   }
 } // namespace glide_test
+
+namespace glide_test
+{
+  /// The contact Jacobian of fixture @p s at a random state (seed @p seed;
+  /// displacements up to 0.01, forces up to 0.02) matches central finite
+  /// differences to 1e-6 relative, with some slave nodes of the pair
+  /// named `pair` closed; @p tag names the case in failure messages.
+  template <int dim>
+  void
+  expect_consistent_jacobian(ContactFixture<dim> &s,
+                             const std::string   &tag,
+                             const unsigned int   seed)
+  {
+    glide::VectorType U, v;
+    random_contact_state(s.e, s.contact, U, v, seed, 0.01, 0.02);
+    s.contact.set_time(0.);
+    ASSERT_FALSE(s.contact.needs_new_pattern(U)) << tag;
+    const auto [err, ref] = contact_jacobian_error(s.e, s.contact, U, v, 1e-7);
+    EXPECT_GT(ref, 0.) << tag;
+    EXPECT_LT(err, 1e-6 * ref) << tag;
+    const auto stats = s.contact.statistics(U);
+    ASSERT_EQ(stats[0].first, "contact_pair_active");
+    EXPECT_GT(std::stoi(stats[0].second), 0) << tag << ": some nodes closed";
+  }
+} // namespace glide_test

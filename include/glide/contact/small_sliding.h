@@ -229,6 +229,16 @@ namespace glide
     void
     set_frame(Anchor &a) const;
 
+    /// Point and tangents of facet @p facet at @p xi for node positions
+    /// @p pos.
+    template <typename T, typename Positions>
+    void
+    facet_point(const unsigned int                       facet,
+                const Xi                                &xi,
+                const Positions                         &pos,
+                std::array<T, dim>                      &x,
+                std::array<std::array<T, dim>, dim - 1> &A) const;
+
     /// Newton for the anchor on facet @p facet; false if none there.
     bool
     anchor_on(const unsigned int        facet,
