@@ -402,3 +402,50 @@ TEST(SmallSliding, PlanesTurnWithTheFacetUnlessSlidingIsInfinitesimal)
         EXPECT_DOUBLE_EQ(w0[k], a.weights[k]) << "initial weights";
     }
 }
+
+// R10.1, R13.1 in 3D: a rigid rotation by 90 degrees about (1, 1, 1) of
+// master and slave point turns the plane normal and both local tangents
+// with it (the tangents are not re-derived from the global x axis) and
+// keeps the gap.
+TEST(SmallSliding, TangentsTurnWithTheFacetIn3D)
+{
+  glide_test::ContactFixture<3> s(ball_on_block(3, 1, true, "hard"),
+                                  "small_turn_3d.prm");
+  auto         master = glide_test::master_of<3>(s, "ball.curved", 0.2);
+  Tensor<1, 3> axis;
+  axis[0] = axis[1] = axis[2] = 1. / std::sqrt(3.);
+  // Rodrigues for 90 degrees: R v = (a.v) a + a x v.
+  const auto rotate = [&](const Tensor<1, 3> &v) {
+    return Tensor<1, 3>((axis * v) * axis + cross_product_3d(axis, v));
+  };
+  const Point<3> X(0.3, 1.0, 0.3);
+  VectorType     U(s.e.locally_owned(), MPI_COMM_WORLD);
+  for (const auto &node : master->get_nodes())
+    {
+      const Tensor<1, 3> y = rotate(node.X);
+      for (unsigned int d = 0; d < 3; ++d)
+        U[node.dofs[d]] = y[d] - node.X[d];
+    }
+  master->set_displacement(VectorType());
+  const SmallSliding<3> planes(*master, {}, false, false);
+  const auto            a = planes.anchor(X);
+  ASSERT_TRUE(a.found);
+  const auto before = planes.plane(a, X);
+  master->set_displacement(U);
+  const auto after = planes.plane(a, Point<3>(rotate(X)));
+  EXPECT_NEAR(after.gap, before.gap, 1e-12);
+  EXPECT_NEAR((after.normal - rotate(before.normal)).norm(), 0., 1e-12);
+  for (unsigned int t = 0; t < 2; ++t)
+    {
+      EXPECT_NEAR((after.tangents[t] - rotate(before.tangents[t])).norm(),
+                  0.,
+                  1e-12)
+        << "tangent " << t + 1;
+      EXPECT_NEAR(before.tangents[t] * before.normal, 0., 1e-12);
+      EXPECT_NEAR(before.tangents[t].norm(), 1., 1e-12);
+    }
+  // The convention of R13.1 at the current normal would differ: the turned
+  // t1 is not the global x axis projected onto the turned plane.
+  const auto convention = contact_tangents<3>(after.normal);
+  EXPECT_GT((convention[0] - after.tangents[0]).norm(), 1e-3);
+}
