@@ -302,14 +302,15 @@ namespace glide
                                                    node.dofs.end());
           if (node.multiplier != numbers::invalid_dof_index)
             idx.push_back(node.multiplier);
+          // Surface to surface: the averaging region.
+          if (pair.small)
+            for (const auto k : pair.anchors[i].region)
+              for (unsigned int d = 0; d < dim; ++d)
+                idx.push_back(pair.nodes[k].dofs[d]);
           if (pair.small && pair.surface)
             {
-              // Small sliding: the fixed list of master nodes (R11.3), and
-              // the averaging region of surface to surface.
+              // Small sliding: the fixed list of master nodes (R11.3).
               pair.coupled[i] = pair.anchors[i].list;
-              for (const auto k : pair.anchors[i].region)
-                for (unsigned int d = 0; d < dim; ++d)
-                  idx.push_back(pair.nodes[k].dofs[d]);
               for (const auto k : pair.coupled[i])
                 for (unsigned int d = 0; d < dim; ++d)
                   idx.push_back(pair.surface->get_nodes()[k].dofs[d]);
@@ -477,7 +478,7 @@ namespace glide
                 for (auto &t : s.tangents)
                   t = turn(t);
               }
-            s.gap = (s.x - s.anchor) * s.normal;
+            s.gap = (s.point - s.anchor) * s.normal;
           }
       }
     else if (pair.surface)
@@ -545,6 +546,28 @@ namespace glide
     if (pair.surface)
       {
         pair.surface->linearize(s.projection, s.x, node.dofs, l);
+        return;
+      }
+    if (pair.small && pair.anchors[&node - pair.nodes.data()].sts)
+      {
+        // Surface to surface against a rigid master: g = (xbar - x0) . n
+        // is linear in the region's displacements.
+        const auto &a = pair.anchors[&node - pair.nodes.data()];
+        l.dofs.clear();
+        for (const auto k : a.region)
+          l.dofs.insert(l.dofs.end(),
+                        pair.nodes[k].dofs.begin(),
+                        pair.nodes[k].dofs.end());
+        const unsigned int n = l.dofs.size();
+        l.gap                = s.gap;
+        l.normal             = s.normal;
+        l.dgap.reinit(n);
+        l.force.reinit(n);
+        l.dforce.reinit(n, n);
+        for (unsigned int k = 0; k < a.region.size(); ++k)
+          for (unsigned int d = 0; d < dim; ++d)
+            l.dgap(dim * k + d) = l.force(dim * k + d) =
+              a.participation[k] * s.normal[d];
         return;
       }
     // Rigid master: g depends on the slave node only; dg/du = n and the
@@ -725,7 +748,7 @@ namespace glide
         double         normal_force = 0, penetration = 0;
         Tensor<1, dim> force;
         if (pair.surface)
-          pair.surface->set_displacement(U);
+          pair.surface->set_displacement(U, !pair.small);
         for (const auto &node : pair.nodes)
           {
             const NodeState s = state(pair, node, U);
@@ -1085,11 +1108,71 @@ namespace glide
   }
 
   template <int dim>
+  typename SmallSliding<dim>::Anchor
+  Contact<dim>::rigid_anchor(const Pair &pair, const Point<dim> &X) const
+  {
+    typename SmallSliding<dim>::Anchor a;
+    const auto                         projection = pair.master->project(X);
+    a.found                                       = true;
+    a.X0                                          = projection.closest_point;
+    a.N0                                          = projection.normal;
+    a.limit = std::numeric_limits<double>::infinity();
+    return a;
+  }
+
+  template <int dim>
+  typename SmallSliding<dim>::Anchor
+  Contact<dim>::rigid_anchor_sts(
+    const Pair                           &pair,
+    const std::vector<Point<dim>>        &X,
+    const std::vector<double>            &phi,
+    const Tensor<1, dim>                 &slave_normal,
+    const std::array<bool, dim>          &symmetric,
+    typename SmallSliding<dim>::Fallback &reason) const
+  {
+    // An analytical master is smooth: each region node lands at its
+    // closest point (where the master normal passes through it), and the
+    // anchor is their weighted centre; otherwise as for a meshed master.
+    typename SmallSliding<dim>::Anchor a;
+    Point<dim>                         centre;
+    const auto                         own = pair.master->project(X[0]);
+    if (own.normal * slave_normal >= 0.)
+      {
+        reason = SmallSliding<dim>::Fallback::same_direction;
+        return a;
+      }
+    for (unsigned int k = 0; k < X.size(); ++k)
+      {
+        a.X0 += phi[k] * pair.master->project(X[k]).closest_point;
+        centre += phi[k] * X[k];
+      }
+    Tensor<1, dim> n = centre - a.X0;
+    if (n.norm() <= 1e-8 * elasticity.length_scale())
+      n = -slave_normal;
+    if (n * slave_normal > 0.)
+      n = -n;
+    for (unsigned int c = 0; c < dim; ++c)
+      if (symmetric[c])
+        n[c] = 0.;
+    a.N0    = n / n.norm();
+    a.sts   = true;
+    a.found = true;
+    a.limit = std::numeric_limits<double>::infinity();
+    reason  = SmallSliding<dim>::Fallback::none;
+    return a;
+  }
+
+  template <int dim>
   void
   Contact<dim>::setup_surface_to_surface(Pair &pair)
   {
     const auto &p = *pair.parameters;
-    const bool  node_based =
+    require(Utilities::MPI::n_mpi_processes(comm) == 1,
+            "Contact pair '" + p.name +
+              "': 'Formulation = surface to surface' runs on one process for "
+              "now (its averaging regions would be cut at process "
+              "boundaries); run glide without mpirun (or with -np 1).");
+    const bool node_based =
       std::any_of(scene.node_sets.begin(),
                   scene.node_sets.end(),
                   [&](const auto &n) { return n.name == p.slave; });
@@ -1119,10 +1202,14 @@ namespace glide
     for (unsigned int i = 0; i < pair.nodes.size(); ++i)
       {
         const auto &node = pair.nodes[i];
+        const auto  nts  = [&]() {
+          return pair.surface ? pair.planes->anchor(node.X) :
+                                  rigid_anchor(pair, node.X);
+        };
         if (node_based)
           {
             ++n_node_based;
-            pair.anchors.push_back(pair.planes->anchor(node.X));
+            pair.anchors.push_back(nts());
             continue;
           }
         // The averaging region (R9.1): the node and its neighbours on the
@@ -1146,8 +1233,11 @@ namespace glide
         for (unsigned int c = 0; c < dim; ++c)
           on_plane[c] = symmetric[c].count(node.dofs[c]) > 0;
         typename SmallSliding<dim>::Fallback reason;
-        auto                                 a = pair.planes->anchor_sts(
-          X, phi, node.normal / node.normal.norm(), on_plane, reason);
+        const Tensor<1, dim> slave_normal = node.normal / node.normal.norm();
+        auto                 a =
+          pair.surface ?
+                            pair.planes->anchor_sts(X, phi, slave_normal, on_plane, reason) :
+                            rigid_anchor_sts(pair, X, phi, slave_normal, on_plane, reason);
         if (a.found)
           {
             a.region        = region;
@@ -1156,7 +1246,7 @@ namespace glide
             continue;
           }
         // R9.4: node to surface for this constraint.
-        a = pair.planes->anchor(node.X);
+        a = nts();
         if (reason == SmallSliding<dim>::Fallback::same_direction)
           ++n_same;
         else if (a.found)
@@ -1234,16 +1324,11 @@ namespace glide
         // Analytical rigid master: the closest point and its normal at the
         // start.
         pair.master->set_time(0.);
-        for (const auto &node : pair.nodes)
-          {
-            typename SmallSliding<dim>::Anchor a;
-            const auto projection = pair.master->project(node.X);
-            a.found               = true;
-            a.X0                  = projection.closest_point;
-            a.N0                  = projection.normal;
-            a.limit               = std::numeric_limits<double>::infinity();
-            pair.anchors.push_back(a);
-          }
+        if (p.formulation == "surface to surface")
+          setup_surface_to_surface(pair);
+        else
+          for (const auto &node : pair.nodes)
+            pair.anchors.push_back(rigid_anchor(pair, node.X));
       }
     std::vector<std::string> unanchored;
     for (unsigned int i = 0; i < pair.nodes.size(); ++i)

@@ -55,8 +55,8 @@ namespace glide
       "node to surface",
       Patterns::Selection("node to surface|surface to surface"),
       "Contact discretization: node to surface (one constraint per "
-      "slave node). surface to surface (small sliding only, a meshed "
-      "master): one constraint per slave node that averages over the "
+      "slave node). surface to surface (small sliding only): one "
+      "constraint per slave node that averages over the "
       "slave nodes around it, anchored where that region, projected along "
       "the slave normal, lands on the master (R9); falls back to node to "
       "surface per constraint where that is not possible, and the log "
@@ -237,12 +237,6 @@ namespace glide
               "': 'Formulation = surface to surface' is available with "
               "'Sliding = small' only so far; use node to surface for "
               "finite sliding.");
-    require(formulation != "surface to surface" ||
-              master_type == MasterType::surface,
-            "Contact pair '" + name +
-              "': 'Formulation = surface to surface' needs a master surface "
-              "of a body (deformable or meshed rigid); an analytical rigid "
-              "master works with node to surface.");
     prm.enter_subsection("Rigid master");
     point        = read_point(prm, "Point", dim, path + "/Rigid master");
     normal       = read_point(prm, "Normal", dim, path + "/Rigid master");

@@ -481,7 +481,8 @@ def case_contact_mpi_matches_serial():
     """P7.1 with contact: the rigid punch on two processes gives the serial
     statistics (iterations, contact force, active set) to solver tolerance,
     with finite and with small sliding (issue 4: anchors of each process's
-    own slave nodes)."""
+    own slave nodes). Surface to surface and deformable masters, which run
+    on one process only, give a clear error under mpirun."""
     punch = os.path.join(ROOT, "parameters", "rigid-punch.prm")
     for sliding in ("finite", "small"):
         sets = ("Output/Write VTU=false", f"Contact pair punch/Sliding={sliding}")
@@ -493,6 +494,15 @@ def case_contact_mpi_matches_serial():
             check(s["kinsol_iterations"] == p["kinsol_iterations"], f"{step}: same iterations")
             check(s["contact_punch_active"] == p["contact_punch_active"], f"{step}: same active set size")
             close(p["contact_punch_force_y"], s["contact_punch_force_y"], 1e-8, f"{step}: same contact force")
+    # What runs on one process only says so under mpirun (exit status 1):
+    # surface to surface, and deformable masters.
+    _, log, _ = run(punch, "Output/Write VTU=false", "Contact pair punch/Sliding=small",
+                    "Contact pair punch/Formulation=surface to surface", name="sts-mpi", mpi=True, expect_status=1)
+    check("'Formulation = surface to surface' runs on one process for now" in log,
+          "surface to surface under mpirun: a clear error")
+    _, log, _ = run(scene_file("hertz-2d-elastic.prm"), "Output/Write VTU=false", name="deformable-mpi", mpi=True,
+                    expect_status=1)
+    check("run on one process for now" in log, "a deformable master under mpirun: a clear error")
 
 
 def hertz_peak(out, radial):
@@ -865,7 +875,9 @@ def case_surface_to_surface_small_sliding():
     total force within 0.1 %.
     (4) Axisymmetric with a deformable master on the axis: pressure next to
     the axis within 15 % of Hertz (measured 0.90).
-    (5) A node-based slave surface falls back to node to surface, counted
+    (5) Against an analytical rigid master (the rigid punch): force within
+    2 % of node to surface with finite sliding.
+    (6) A node-based slave surface falls back to node to surface, counted
     in the log."""
     rows, log, out = run(scene_file("hertz-2d-elastic.prm"), "Output/Write VTU=false",
                          "Contact pair hertz/Sliding=small", "Contact pair hertz/Formulation=surface to surface")
@@ -914,6 +926,18 @@ def case_surface_to_surface_small_sliding():
     print(f"measured: axisymmetric, surface to surface, pressure next to the axis {ratio:.3f} of Hertz's")
     check(abs(ratio - 1) < 0.15, "axisymmetric: pressure next to the axis within 15 %")
     check(all(r["kinsol_iterations"] <= 6 and r["cut_backs"] == 0 for r in rows), "axisymmetric: at most 6 iterations")
+
+    # Against an analytical rigid master (landing points: the closest
+    # points): the rigid punch, force within 2 % of node to surface with
+    # finite sliding.
+    sets = ("Output/Write VTU=false", "Contact pair punch/Sliding=small")
+    finite, _, _ = run(scene_file("rigid-punch.prm"), "Output/Write VTU=false", name="punch-finite")
+    rows, log, _ = run(scene_file("rigid-punch.prm"), *sets, "Contact pair punch/Formulation=surface to surface",
+                       name="punch-sts")
+    check("surface to surface" in log, "rigid master: the log names the formulation")
+    print(f"measured: rigid punch, surface to surface: force {rows[-1]['contact_punch_force_y'] / finite[-1]['contact_punch_force_y']:.4f} of node to surface")
+    close(rows[-1]["contact_punch_force_y"], finite[-1]["contact_punch_force_y"], 0.02, "rigid master: force")
+    check(all(r["kinsol_iterations"] <= 6 and r["cut_backs"] == 0 for r in rows), "rigid master: at most 6 iterations")
 
     _, log, _ = run(scene_file("concentric-cylinders.prm"), "Output/Write VTU=false",
                     "Node sets=center, top_master, ring_top", "Node set ring_top/Points=0, 1.005",

@@ -247,6 +247,21 @@ namespace glide
     void
     setup_small_sliding(Pair &pair, const std::string &path);
 
+    /// Small-sliding anchor on an analytical rigid master: the closest
+    /// point of @p X and the master normal there (initial position).
+    typename SmallSliding<dim>::Anchor
+    rigid_anchor(const Pair &pair, const dealii::Point<dim> &X) const;
+
+    /// Surface-to-surface anchor on an analytical rigid master (R9.2 with
+    /// the closest points as the landing points).
+    typename SmallSliding<dim>::Anchor
+    rigid_anchor_sts(const Pair                            &pair,
+                     const std::vector<dealii::Point<dim>> &X,
+                     const std::vector<double>             &phi,
+                     const dealii::Tensor<1, dim>          &slave_normal,
+                     const std::array<bool, dim>           &symmetric,
+                     typename SmallSliding<dim>::Fallback  &reason) const;
+
     /// Surface-to-surface anchors of a small-sliding pair (R9), with the
     /// fall-back to node to surface counted in the log (R9.4).
     void
