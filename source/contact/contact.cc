@@ -1146,15 +1146,8 @@ namespace glide
         a.X0 += phi[k] * pair.master->project(X[k]).closest_point;
         centre += phi[k] * X[k];
       }
-    Tensor<1, dim> n = centre - a.X0;
-    if (n.norm() <= 1e-8 * elasticity.length_scale())
-      n = -slave_normal;
-    if (n * slave_normal > 0.)
-      n = -n;
-    for (unsigned int c = 0; c < dim; ++c)
-      if (symmetric[c])
-        n[c] = 0.;
-    a.N0    = n / n.norm();
+    a.N0 = contact_direction(
+      centre, a.X0, slave_normal, symmetric, 1e-8 * elasticity.length_scale());
     a.sts   = true;
     a.found = true;
     a.limit = std::numeric_limits<double>::infinity();

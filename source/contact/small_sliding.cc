@@ -564,15 +564,8 @@ namespace glide
       }
     // Contact direction: from the anchor to the region's centre, oriented
     // against the slave normal (R9.2), in symmetry planes (R9.3).
-    Tensor<1, dim> n = centre - a.X0;
-    if (n.norm() <= 1e-8 * surface.facet_size())
-      n = -slave_normal;
-    if (n * slave_normal > 0.)
-      n = -n;
-    for (unsigned int c = 0; c < dim; ++c)
-      if (symmetric[c])
-        n[c] = 0.;
-    a.N0    = n / n.norm();
+    a.N0 = contact_direction(
+      centre, a.X0, slave_normal, symmetric, 1e-8 * surface.facet_size());
     a.sts   = true;
     a.found = true;
     a.facets.push_back(a.facet);

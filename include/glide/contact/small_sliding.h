@@ -26,6 +26,32 @@ namespace glide
   contact_tangents(const dealii::Tensor<1, dim> &n);
 
   /**
+   * Surface-to-surface contact direction (R9.2, R9.3): from the anchor
+   * @p anchor to the averaging region's centre @p centre, oriented against
+   * the slave normal @p slave_normal (along -slave_normal where the two
+   * points are closer than @p tolerance), with the components normal to
+   * the symmetry planes marked in @p symmetric removed; unit length.
+   */
+  template <int dim>
+  dealii::Tensor<1, dim>
+  contact_direction(const dealii::Point<dim>     &centre,
+                    const dealii::Point<dim>     &anchor,
+                    const dealii::Tensor<1, dim> &slave_normal,
+                    const std::array<bool, dim>  &symmetric,
+                    const double                  tolerance)
+  {
+    dealii::Tensor<1, dim> n = centre - anchor;
+    if (n.norm() <= tolerance)
+      n = -slave_normal;
+    if (n * slave_normal > 0.)
+      n = -n;
+    for (unsigned int c = 0; c < dim; ++c)
+      if (symmetric[c])
+        n[c] = 0.;
+    return n / n.norm();
+  }
+
+  /**
    * Small-sliding node-to-surface contact against the master surface of a
    * deformable (or meshed rigid) body (issue 4; R6-R8, R10-R12; equations
    * in doc/theory/small-sliding.md).
