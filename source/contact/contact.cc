@@ -1146,7 +1146,7 @@ namespace glide
         a.X0 += phi[k] * pair.master->project(X[k]).closest_point;
         centre += phi[k] * X[k];
       }
-    a.N0 = contact_direction(
+    a.N0 = contact_direction<dim>(
       centre, a.X0, slave_normal, symmetric, 1e-8 * elasticity.length_scale());
     a.sts   = true;
     a.found = true;

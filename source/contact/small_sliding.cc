@@ -564,7 +564,7 @@ namespace glide
       }
     // Contact direction: from the anchor to the region's centre, oriented
     // against the slave normal (R9.2), in symmetry planes (R9.3).
-    a.N0 = contact_direction(
+    a.N0 = contact_direction<dim>(
       centre, a.X0, slave_normal, symmetric, 1e-8 * surface.facet_size());
     a.sts   = true;
     a.found = true;
