@@ -623,27 +623,29 @@ namespace glide
       return std::lower_bound(a.list.begin(), a.list.end(), k) - a.list.begin();
     };
 
+    // The plane normal: the initial one in infinitesimal sliding, else
+    // carried by the anchor facet's frame (R10.1).
+    std::array<T, dim> x_facet;
+    if (fixed_plane)
+      for (unsigned int d = 0; d < dim; ++d)
+        n[d] = a.N0[d];
+    else
+      {
+        std::array<std::array<T, dim>, dim - 1> A;
+        facet_point<T>(a.facet, a.xi, pos, x_facet, A);
+        const auto e = facet_frame<T, dim>(A);
+        n.fill(T(0.));
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int d = 0; d < dim; ++d)
+            n[d] += a.frame[i] * e[i][d];
+      }
+
     if (fixed_plane || a.sts)
       {
-        // Infinitesimal sliding, and surface to surface: the initial plane
-        // moved by the weighted master displacements; surface to surface
-        // in a nonlinear scene turns it with the anchor facet.
+        // Infinitesimal sliding, and surface to surface: the initial anchor
+        // moved by the weighted master displacements, fixed weights.
         for (unsigned int d = 0; d < dim; ++d)
-          {
-            n[d]  = a.N0[d];
-            x0[d] = a.X0[d];
-          }
-        if (!fixed_plane)
-          {
-            std::array<T, dim>                      x_facet;
-            std::array<std::array<T, dim>, dim - 1> A;
-            facet_point<T>(a.facet, a.xi, pos, x_facet, A);
-            const auto e = facet_frame<T, dim>(A);
-            n.fill(T(0.));
-            for (unsigned int i = 0; i < dim; ++i)
-              for (unsigned int d = 0; d < dim; ++d)
-                n[d] += a.frame[i] * e[i][d];
-          }
+          x0[d] = a.X0[d];
         for (unsigned int m = 0; m < a.list.size(); ++m)
           {
             const auto y = pos(a.list[m]);
@@ -657,15 +659,8 @@ namespace glide
         return;
       }
 
-    // The anchor's material point and the plane normal carried by the
-    // facet's frame (R10.1).
-    std::array<std::array<T, dim>, dim - 1> A;
-    facet_point<T>(a.facet, a.xi, pos, x0, A);
-    const auto e = facet_frame<T, dim>(A);
-    n.fill(T(0.));
-    for (unsigned int i = 0; i < dim; ++i)
-      for (unsigned int d = 0; d < dim; ++d)
-        n[d] += a.frame[i] * e[i][d];
+    // Small sliding: the anchor's material point.
+    x0  = x_facet;
     gap = T(0.);
     for (unsigned int d = 0; d < dim; ++d)
       gap += (xs[d] - x0[d]) * n[d];
