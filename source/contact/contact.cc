@@ -264,8 +264,6 @@ namespace glide
           pair.previous_position.push_back(node.X);
         pair.slip.assign(pair.nodes.size(), 0.);
         pair.slip_components.assign(pair.nodes.size(), {{0., 0.}});
-        pair.last_closed.assign(pair.nodes.size(), -1);
-        pair.switches.assign(pair.nodes.size(), 0);
         pairs.push_back(std::move(pair));
       }
 
@@ -288,6 +286,7 @@ namespace glide
       if (pair.parameters->enforcement == Enforcement::hard)
         for (auto &node : pair.nodes)
           node.multiplier = next++;
+    begin_solve();
   }
 
   template <int dim>
@@ -408,6 +407,10 @@ namespace glide
       {
         pair.last_closed.assign(pair.nodes.size(), -1);
         pair.switches.assign(pair.nodes.size(), 0);
+        pair.last_pieces.assign(pair.nodes.size(), {{-1, -1}});
+        pair.returns.assign(pair.nodes.size(), 0);
+        pair.held_piece.assign(pair.nodes.size(), -1);
+        pair.held = 0;
       }
   }
 
@@ -483,8 +486,11 @@ namespace glide
       }
     else if (pair.surface)
       {
-        const auto start = std::chrono::steady_clock::now();
-        s.projection     = pair.surface->project(s.x, 1.5 * node.size);
+        const auto         start = std::chrono::steady_clock::now();
+        const unsigned int i     = &node - pair.nodes.data();
+        const int held = i < pair.held_piece.size() ? pair.held_piece[i] : -1;
+        s.projection   = held >= 0 ? pair.surface->project_onto(held, s.x) :
+                                     pair.surface->project(s.x, 1.5 * node.size);
         searching += std::chrono::steady_clock::now() - start;
         s.found = s.projection.found;
         s.gap =
@@ -630,6 +636,25 @@ namespace glide
                     pair.last_closed[i] != (s.closed ? 1 : 0))
                   ++pair.switches[i];
                 pair.last_closed[i] = s.closed ? 1 : 0;
+                // A node whose projection keeps going back to the piece it
+                // left (A, B, A, B) is held on its piece for the rest of the
+                // solve: its gap is then measured to that facet's plane.
+                if (pair.surface && !pair.small && s.found && s.closed &&
+                    pair.held_piece[i] < 0)
+                  {
+                    auto     &last  = pair.last_pieces[i];
+                    const int piece = s.projection.piece;
+                    if (piece != last[1])
+                      {
+                        if (piece == last[0] &&
+                            ++pair.returns[i] >= maximum_returns)
+                          {
+                            pair.held_piece[i] = piece;
+                            ++pair.held;
+                          }
+                        last = {{last[1], piece}};
+                      }
+                  }
                 if (pair.switches[i] > maximum_switches && cycling.size() < 400)
                   {
                     std::ostringstream x;
@@ -785,6 +810,34 @@ namespace glide
                             const double      t_new)
   {
     move_surfaces(U);
+    for (const auto &pair : pairs)
+      {
+        // How far the held gaps are from those of the free projection.
+        std::vector<std::string> held;
+        double                   difference = 0.;
+        for (unsigned int i = 0; i < pair.held_piece.size(); ++i)
+          if (pair.held_piece[i] >= 0)
+            {
+              const auto  &node = pair.nodes[i];
+              const double g    = state(pair, node, U).gap;
+              Point<dim>   x    = node.X;
+              for (unsigned int d = 0; d < dim; ++d)
+                x[d] += U[node.dofs[d]];
+              const auto free = pair.surface->project(x, 1.5 * node.size);
+              if (free.found)
+                difference = std::max(difference, std::abs(free.gap - g));
+              std::ostringstream text;
+              text << "(" << node.X << ")";
+              held.push_back(text.str());
+            }
+        std::ostringstream after;
+        after << " slave node(s) held on one master facet in this step (their "
+                 "projection alternated between facets meeting at a corner; "
+                 "the gap is measured to that facet's plane, at most "
+              << difference << " from the free projection's)";
+        report(
+          held, "contact pair '" + pair.parameters->name + "': ", after.str());
+      }
     std::vector<std::vector<std::string>> slid_too_far(pairs.size());
     for (auto &pair : pairs)
       for (unsigned int i = 0; i < pair.nodes.size(); ++i)

@@ -893,19 +893,13 @@ namespace glide
     result.point      = y;
     result.normal     = n;
     result.gap        = (xs - y) * n;
-    // Contact with an edge or node only at a distance from it: a slave
-    // point on the end point keeps the piece's normal.
+    // Clamped at an edge or node (and not on it): the gap is measured to
+    // the piece's tangent plane there, along the piece's own normal (the
+    // "extended facet"). project_within picks among the pieces meeting at
+    // that point.
     for (const bool c : fixed)
       result.vertex = result.vertex || c;
     result.vertex = result.vertex && (xs - y).norm() > 1e-10 * max_size;
-    if (result.vertex)
-      {
-        // The closest point of an edge or node: contact along r.
-        const double distance = (xs - y).norm();
-        const double sign     = result.gap >= 0 ? 1. : -1.;
-        result.gap            = sign * distance;
-        result.normal         = sign * (xs - y) / distance;
-      }
     return result;
   }
 
@@ -943,6 +937,15 @@ namespace glide
     std::sort(candidates.begin(),
               candidates.end(),
               [](const Leaf &a, const Leaf &b) { return a.second < b.second; });
+    // Clamped points: the closest one decides where the slave point meets
+    // the master; the pieces that meet there compete by their extended
+    // gaps, and the largest |g| wins (outside a convex corner the point is
+    // outside if it is outside any of the facets' planes; inside a concave
+    // corner it is inside if it is inside any of them). The force direction
+    // is that piece's normal: bounded derivatives, where the direction to
+    // the corner, r / |r|, turns as 1 / |r| and made Newton diverge for
+    // slave nodes that almost touch a faceted corner.
+    std::vector<std::pair<Projection, bool>> clamped;
     double best_distance = std::numeric_limits<double>::max();
     for (const auto &candidate : candidates)
       {
@@ -968,17 +971,31 @@ namespace glide
               if (dim == 3)
                 beyond = beyond || p.xi[b] < 0. || p.xi[b] > 1.;
             }
-        // The closest of these points decides; if it lies beyond the end
-        // of the master, the slave point is not in contact.
-        const double distance = std::abs(p.gap);
-        if (distance < best_distance)
-          {
-            best_distance = distance;
-            best_vertex   = p;
-            if (beyond)
-              best_vertex.found = false;
-          }
+        best_distance = std::min(best_distance, (xs - p.point).norm());
+        clamped.emplace_back(p, beyond);
       }
+    if (best.found)
+      return best;
+    // The closest point, and of the pieces there the largest |g|; if the
+    // point lies beyond the end of the master, not in contact.
+    const double tolerance = 1e-8 * max_size;
+    Point<dim>   meeting;
+    for (const auto &[p, beyond] : clamped)
+      if ((xs - p.point).norm() <= best_distance + tolerance)
+        {
+          meeting = p.point;
+          break;
+        }
+    bool beyond_end = false;
+    for (const auto &[p, beyond] : clamped)
+      if ((p.point - meeting).norm() <= tolerance)
+        {
+          if (!best_vertex.found || std::abs(p.gap) > std::abs(best_vertex.gap))
+            best_vertex = p;
+          beyond_end = beyond_end || beyond;
+        }
+    if (beyond_end)
+      best_vertex.found = false;
     return best.found ? best : best_vertex;
   }
 
@@ -1148,17 +1165,7 @@ namespace glide
     std::array<Fad, dim> r;
     for (unsigned int d = 0; d < dim; ++d)
       r[d] = s[d] - y[d];
-    Fad g;
-    if (p.vertex)
-      {
-        const Fad    distance = std::sqrt(dot(r, r));
-        const double sign     = p.gap >= 0 ? 1. : -1.;
-        g                     = sign * distance;
-        for (unsigned int d = 0; d < dim; ++d)
-          nrm[d] = sign * r[d] / distance;
-      }
-    else
-      g = dot(r, nrm);
+    const Fad g = dot(r, nrm);
 
     // Force direction: the slave node gets n, virtual node j gets -w_j n
     // (mirrored: -w_j M n, and -2 w_j n_a on the plane node's a-component).

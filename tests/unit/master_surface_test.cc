@@ -274,6 +274,80 @@ TEST(MasterSurface, ProjectionOntoAFlatSurface)
   EXPECT_FALSE(top->project(Point<2>(0.5, 5.)).found);
 }
 
+// A faceted convex corner (f = 0, a node of the faceted circle): a slave
+// point outside it, where no facet contains its projection, is in contact
+// along the normal of one of the two facets, with the larger of the two
+// extended gaps (the distance to the facets' lines), so the gap is
+// continuous and piecewise linear and the force direction bounded; the
+// linearization gives the same gap gradient as finite differences.
+TEST(MasterSurface, FacetedCornerUsesTheFacetNormals)
+{
+  Fixture<2>  s(ball_on_block(2, 0., 1, "hard"), "corner.prm");
+  const auto  ball      = master_of<2>(s, "ball.curved", 0.);
+  const auto &facets    = ball->get_facets();
+  const auto &x         = ball->get_positions();
+  auto        normal_of = [&](const unsigned int i) {
+    const Tensor<1, 2> a = x[facets[i].nodes.back()] - x[facets[i].nodes[0]];
+    Tensor<1, 2>       n;
+    n[0] = a[1];
+    n[1] = -a[0];
+    return n / n.norm();
+  };
+  unsigned int corners = 0;
+  for (unsigned int i = 0; i < facets.size(); ++i)
+    {
+      const int j = facets[i].neighbours[1];
+      if (j < 0)
+        continue;
+      const unsigned int v  = facets[i].nodes.back();
+      const Tensor<1, 2> ni = normal_of(i), nj = normal_of(j);
+      ASSERT_LT(ni * nj, 1. - 1e-6) << "a kink at every node";
+      Tensor<1, 2> b = ni + nj;
+      b /= b.norm();
+      const Tensor<1, 2> t({-b[1], b[0]});
+      const double       h = ball->facet_size();
+      for (const double offset : {-0.002, 0., 0.003})
+        {
+          const Point<2> xs = x[v] + 0.05 * h * b + offset * h * t;
+          const auto     p  = ball->project(xs);
+          ASSERT_TRUE(p.found) << i;
+          const double gi = (xs - x[v]) * ni, gj = (xs - x[v]) * nj;
+          EXPECT_NEAR(p.gap, std::max(gi, gj), 1e-12 * h) << i;
+          EXPECT_LT(p.gap, (xs - x[v]).norm()) << "not the corner distance";
+          // On the bisector (offset 0) either facet's normal.
+          const double error =
+            std::abs(gi - gj) < 1e-12 * h ?
+              std::min((p.normal - ni).norm(), (p.normal - nj).norm()) :
+              (p.normal - (gi > gj ? ni : nj)).norm();
+          EXPECT_NEAR(error, 0., 1e-12) << i;
+          EXPECT_NEAR((p.point - x[v]).norm(), 0., 1e-9 * h) << i;
+
+          // The gap's gradient with respect to the slave point.
+          std::array<types::global_dof_index, 2> slave_dofs{{0, 1}};
+          MasterSurface<2>::Linearization        l;
+          ball->linearize(p, xs, slave_dofs, l);
+          EXPECT_NEAR(l.gap, p.gap, 1e-14);
+          for (unsigned int d = 0; d < 2; ++d)
+            {
+              if (offset == 0.)
+                continue; // on the bisector: a kink of the gap
+              Point<2> plus = xs, minus = xs;
+              plus[d] += 1e-7 * h;
+              minus[d] -= 1e-7 * h;
+              const double fd =
+                (ball->project(plus).gap - ball->project(minus).gap) /
+                (2e-7 * h);
+              EXPECT_NEAR(l.dgap(d), fd, 1e-6) << i << " " << d;
+              // A straight facet's normal does not turn with the slave point.
+              for (unsigned int e = 0; e < 2; ++e)
+                EXPECT_NEAR(l.dforce(d, e), 0., 1e-12);
+            }
+        }
+      ++corners;
+    }
+  EXPECT_GE(corners, 3u);
+}
+
 // A slave node deeper in the master than 1.5 facets (a coarse slave on a
 // fine or thin master) is found only with the slave's own search radius,
 // which project() uses where the usual search finds nothing.

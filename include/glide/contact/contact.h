@@ -202,6 +202,16 @@ namespace glide
       /// of switches in the current solve, per node (cycling detection).
       mutable std::vector<signed char>  last_closed;
       mutable std::vector<unsigned int> switches;
+      /// Deformable masters: per node, the pieces of the last two Newton
+      /// iterations, how often the projection went back to the piece before
+      /// (A, B, A), and the piece the node is held on for the rest of the
+      /// solve after `maximum_returns` of them (-1: none). At a faceted
+      /// corner the force direction jumps between the facets' normals, and
+      /// Newton can alternate between them forever.
+      mutable std::vector<std::array<int, 2>> last_pieces;
+      mutable std::vector<unsigned int>       returns;
+      mutable std::vector<int>                held_piece;
+      mutable unsigned int                    held = 0; ///< in this step
       /// Written steps, for the .pvd file.
       std::vector<std::pair<double, std::string>> records;
     };
@@ -296,5 +306,8 @@ namespace glide
     /// Switches between open and closed per node and solve before the
     /// solve is declared cycling.
     static constexpr unsigned int maximum_switches = 4;
+    /// Returns to the piece before (A, B, A) after which a slave node is
+    /// held on its piece for the rest of the solve.
+    static constexpr unsigned int maximum_returns = 2;
   };
 } // namespace glide

@@ -66,11 +66,15 @@ namespace glide
    * slave point, (r - (r.n) n).a_alpha = 0 with r = x_s - x(xi) and a_alpha
    * the tangents; Newton on xi per candidate piece, clamped to the piece.
    * The gap is g = r.n. Where no piece contains the projection but the
-   * closest point is on an edge or node between pieces (a faceted convex
-   * corner, f = 0), the slave point is in contact with that point: n =
-   * r/|r|. Linearization: automatic differentiation (Sacado) of g and of
-   * the force vector G (slave: n; master node j: -w_j n) through two chord
-   * steps of the projection, which gives the exact first derivatives,
+   * closest point is on an edge or node between pieces (a faceted corner,
+   * f = 0), the pieces meeting there compete with their extended gaps
+   * g = r.n (n: the piece's own normal at that point) and the largest |g|
+   * wins: outside a convex corner a point is outside if it is outside any
+   * facet's plane, inside a concave one it is inside if inside any. The
+   * force direction stays a facet normal (n = r/|r| would turn as 1/|r|
+   * next to the corner). Linearization: automatic differentiation (Sacado) of g
+   * and of the force vector G (slave: n; master node j: -w_j n) through two
+   * chord steps of the projection, which gives the exact first derivatives,
    * including the variation of projection point and normal (R5.1).
    */
   template <int dim>
@@ -156,6 +160,16 @@ namespace glide
     /// more than a master facet is still found.
     Projection
     project(const dealii::Point<dim> &x, const double radius = 0.) const;
+
+    /// The projection of @p x onto piece @p piece alone, clamped to it (at
+    /// its edge or node: the gap to the piece's tangent plane there); for a
+    /// slave node held on one piece while its projection alternates
+    /// between pieces that meet at a faceted corner.
+    Projection
+    project_onto(const unsigned int piece, const dealii::Point<dim> &x) const
+    {
+      return project_on(piece, x);
+    }
 
     /// Linearization at projection @p p of the slave point @p x with slave
     /// DoFs @p slave_dofs.
