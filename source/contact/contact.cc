@@ -410,7 +410,6 @@ namespace glide
         pair.last_pieces.assign(pair.nodes.size(), {{-1, -1}});
         pair.returns.assign(pair.nodes.size(), 0);
         pair.held_piece.assign(pair.nodes.size(), -1);
-        pair.held = 0;
       }
   }
 
@@ -650,7 +649,6 @@ namespace glide
                             ++pair.returns[i] >= maximum_returns)
                           {
                             pair.held_piece[i] = piece;
-                            ++pair.held;
                           }
                         last = {{last[1], piece}};
                       }

@@ -1,4 +1,5 @@
 #include <glide/contact/contact_parameters.h>
+#include <glide/mechanics/rotation.h>
 #include <glide/scene/input_error.h>
 
 #include <deal.II/base/utilities.h>
@@ -140,13 +141,20 @@ namespace glide
       "Rotation",
       "0",
       Patterns::Anything(),
-      "Prescribed rotation angle (radians, counter-clockwise about "
-      "z) as a function of t, about 'Rotation center'.");
+      "Prescribed rotation angle (radians, right-hand rule about "
+      "'Rotation axis') as a function of t, about 'Rotation center'.");
     prm.declare_entry(
       "Rotation center",
       "0, 0",
       Patterns::List(Patterns::Double(), 2, 3),
       "Center of the prescribed rotation (reference configuration).");
+    prm.declare_entry(
+      "Rotation axis",
+      "0, 0, 1",
+      Patterns::Anything(),
+      "Axis of the prescribed rotation, three components (normalized); "
+      "3D only, in 2D rotations are about z. The axis of a 'rigid "
+      "circle' (a cylinder in 3D, along z) turns with it.");
     prm.leave_subsection();
   }
 
@@ -246,6 +254,12 @@ namespace glide
     rotation     = prm.get("Rotation");
     rotation_center =
       read_point(prm, "Rotation center", dim, path + "/Rigid master");
+    {
+      const auto a  = parse_rotation_axis(prm.get("Rotation axis"),
+                                         dim,
+                                         path + "/Rigid master/Rotation axis");
+      rotation_axis = {{a[0], a[1], a[2]}};
+    }
     prm.leave_subsection();
 
     double n2 = 0;

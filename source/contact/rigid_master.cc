@@ -1,4 +1,5 @@
 #include <glide/contact/rigid_master.h>
+#include <glide/mechanics/rotation.h>
 #include <glide/scene/input_error.h>
 
 #include <deal.II/base/utilities.h>
@@ -52,6 +53,9 @@ namespace glide
         reference_normal[d] = p.normal[d];
         rotation_center[d]  = p.rotation_center[d];
       }
+    for (unsigned int d = 0; d < 3; ++d)
+      axis[d] = p.rotation_axis[d];
+    axis /= axis.norm();
     reference_normal /= reference_normal.norm();
     if (!p.translation.empty())
       translation =
@@ -59,20 +63,6 @@ namespace glide
     rotation = parse(p.rotation, 1, path + "/Rigid master/Rotation");
     set_time(0.);
   }
-
-  namespace
-  {
-    /// Rotation by @p theta about z (in 3D about the z axis).
-    template <int dim>
-    Tensor<1, dim>
-    rotate_z(const Tensor<1, dim> &v, const double theta)
-    {
-      Tensor<1, dim> w = v;
-      w[0]             = std::cos(theta) * v[0] - std::sin(theta) * v[1];
-      w[1]             = std::sin(theta) * v[0] + std::cos(theta) * v[1];
-      return w;
-    }
-  } // namespace
 
   template <int dim>
   std::pair<Tensor<1, dim>, double>
@@ -95,8 +85,8 @@ namespace glide
     const auto [u0, theta0] = motion(from);
     const auto [u1, theta1] = motion(to);
     const Tensor<1, dim> X_minus_c =
-      rotate_z<dim>(y - rotation_center - u0, -theta0);
-    return rotation_center + u1 + rotate_z<dim>(X_minus_c, theta1);
+      rotate<dim>(y - rotation_center - u0, axis, -theta0);
+    return rotation_center + u1 + rotate<dim>(X_minus_c, axis, theta1);
   }
 
   template <int dim>
@@ -104,11 +94,13 @@ namespace glide
   RigidMaster<dim>::set_time(const double t)
   {
     const auto [u, theta] = motion(t);
-    // Rotation about z (in 3D the axis of a cylinder stays along z only
-    // for theta = 0; rotations are meant for 2D and for planes).
+    // Rotation about 'Rotation axis' (z in 2D); a cylinder's axis (z in
+    // the reference configuration) turns with the master.
     point = rotation_center + u +
-            rotate_z<dim>(reference_point - rotation_center, theta);
-    normal = rotate_z<dim>(reference_normal, theta);
+            rotate<dim>(reference_point - rotation_center, axis, theta);
+    normal = rotate<dim>(reference_normal, axis, theta);
+    if constexpr (dim == 3)
+      cylinder_axis = rotate<dim>(Tensor<1, dim>({0., 0., 1.}), axis, theta);
   }
 
   template <int dim>
@@ -123,13 +115,13 @@ namespace glide
         p.closest_point = x - p.gap * normal;
         return p;
       }
-    // Circle, cylinder (axis z in 3D) or sphere.
+    // Circle, cylinder (in 3D along its current axis) or sphere.
     Tensor<1, dim> d = x - point;
     Tensor<2, dim> P = unit_symmetric_tensor<dim>();
     if (dim == 3 && type == MasterType::rigid_circle)
       {
-        d[2]    = 0.;
-        P[2][2] = 0.;
+        d -= (d * cylinder_axis) * cylinder_axis;
+        P -= outer_product(cylinder_axis, cylinder_axis);
       }
     const double r = d.norm();
     if (!(r > 1e-12 * radius))

@@ -1,4 +1,5 @@
 #include <glide/mechanics/elasticity.h>
+#include <glide/mechanics/rotation.h>
 #include <glide/scene/input_error.h>
 
 #include <deal.II/base/quadrature_lib.h>
@@ -242,6 +243,8 @@ namespace glide
         r.rotation = parse_function(body.rigid_rotation, 1, path + "/Rotation");
         for (unsigned int d = 0; d < dim; ++d)
           r.center[d] = body.rigid_center[d];
+        for (unsigned int d = 0; d < 3; ++d)
+          r.axis[d] = body.rigid_axis[d];
         const auto &unit_points = fe.get_unit_support_points();
         std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
         std::set<types::global_dof_index>    seen;
@@ -465,15 +468,12 @@ namespace glide
           }
         r.rotation->set_time(t);
         const double theta = r.rotation->value(Point<dim>());
-        const double cs = std::cos(theta), sn = std::sin(theta);
         for (const auto &[dof, comp, X] : r.dofs)
           {
             if (!c.can_store_line(dof) || c.is_constrained(dof))
               continue;
-            Tensor<1, dim> a = X - r.center;
-            Tensor<1, dim> x = r.center + T + a;
-            x[0]             = r.center[0] + T[0] + cs * a[0] - sn * a[1];
-            x[1]             = r.center[1] + T[1] + sn * a[0] + cs * a[1];
+            const Tensor<1, dim> x =
+              r.center + T + rotate<dim>(X - r.center, r.axis, theta);
             c.add_line(dof);
             c.set_inhomogeneity(dof, x[comp] - X[comp]);
           }

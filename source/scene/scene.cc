@@ -1,3 +1,4 @@
+#include <glide/mechanics/rotation.h>
 #include <glide/scene/input_error.h>
 #include <glide/scene/scene.h>
 
@@ -166,13 +167,20 @@ namespace glide
         prm.declare_entry("Rotation",
                           "0",
                           Patterns::Anything(),
-                          "Rotation angle (radians, counter-clockwise about "
-                          "z) as a function of t, about 'Rotation center'.");
+                          "Rotation angle (radians, right-hand rule about "
+                          "'Rotation axis') as a function of t, about "
+                          "'Rotation center'.");
         prm.declare_entry("Rotation center",
                           "",
                           Patterns::List(Patterns::Double(), 0, 3),
                           "Center of the rotation (reference "
                           "configuration), comma-separated. Empty: origin.");
+        prm.declare_entry("Rotation axis",
+                          "0, 0, 1",
+                          Patterns::Anything(),
+                          "Axis of the rotation, three components "
+                          "(normalized); 3D only, in 2D rotations are about "
+                          "z.");
         prm.leave_subsection();
         prm.leave_subsection();
       }
@@ -251,6 +259,13 @@ namespace glide
         body.rigid             = prm.get_bool("Rigid");
         body.rigid_translation = prm.get("Translation");
         body.rigid_rotation    = prm.get("Rotation");
+        {
+          const auto a =
+            parse_rotation_axis(prm.get("Rotation axis"),
+                                dimension,
+                                path + "/Rigid body/Rotation axis");
+          body.rigid_axis = {{a[0], a[1], a[2]}};
+        }
         body.rigid_center.assign(dimension, 0.);
         if (!prm.get("Rotation center").empty())
           {

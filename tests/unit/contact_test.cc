@@ -86,6 +86,40 @@ TEST(RigidMaster, PrescribedMotion)
   EXPECT_NEAR(q.gap, 1., 1e-12);
 }
 
+// P1.4: a rotation about an axis other than z in 3D. A cylinder through
+// (1, 2, 0) along z, turned by 90 degrees about the x axis through (1, 2,
+// 0): its axis lies along -y, so a point's gap is its distance from the
+// line {x = 1, z = 0} minus the radius, whatever its y; move() carries a
+// point of the master along the same rigid motion.
+TEST(RigidMaster, RotationAboutAnyAxisIn3D)
+{
+  auto p            = rigid(MasterType::rigid_circle);
+  p.rotation        = "pi/2*t";
+  p.rotation_center = {1., 2., 0.};
+  p.rotation_axis   = {{1., 0., 0.}};
+  RigidMaster<3> m(p, "pair");
+  m.set_time(1.);
+  for (const double y : {-3., 2., 10.})
+    {
+      const auto q = m.project(Point<3>(1., y, 0.8));
+      EXPECT_NEAR(q.gap, 0.3, 1e-12) << y;
+      EXPECT_NEAR(q.normal[2], 1., 1e-12) << y;
+      EXPECT_NEAR(q.curvature[1][1], 0., 1e-12)
+        << "no curvature along the axis";
+    }
+  // The point (1, 2, 1) of the reference master (on its axis, z = 1) goes
+  // to (1, 1, 0) (z turns into -y about x).
+  const auto x = m.move(Point<3>(1., 2., 1.), 0., 1.);
+  EXPECT_NEAR((x - Point<3>(1., 1., 0.)).norm(), 0., 1e-12);
+  // A plane normal along y turned about x by 90 degrees: along z.
+  auto plane          = rigid(MasterType::rigid_plane);
+  plane.rotation      = "pi/2*t";
+  plane.rotation_axis = {{2., 0., 0.}}; // normalized
+  RigidMaster<3> r(plane, "pair");
+  r.set_time(1.);
+  EXPECT_NEAR(r.project(Point<3>(0., 0., 3.)).normal[2], 1., 1e-12);
+}
+
 TEST(RigidMaster, NormalUndefinedAtTheCenterIsReported)
 {
   RigidMaster<2> m(rigid(MasterType::rigid_circle), "pair");

@@ -2,6 +2,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,7 @@ namespace glide
     std::string         translation;          ///< u(t), ';'-separated
     std::string         rotation = "0";       ///< angle(t) in radians
     std::vector<double> rotation_center{0., 0., 0.};
+    std::array<double, 3> rotation_axis{{0., 0., 1.}}; ///< unit vector
 
     std::string formulation = "node to surface";
     std::string sliding     = "finite";

@@ -60,6 +60,8 @@ namespace glide
     const bool             inside;
     const double           radius;
     dealii::Point<dim>     reference_point, point, rotation_center;
+    dealii::Tensor<1, 3>   axis;          ///< of the prescribed rotation
+    dealii::Tensor<1, dim> cylinder_axis; ///< 3D cylinder, current
     dealii::Tensor<1, dim> reference_normal, normal;
     std::unique_ptr<dealii::FunctionParser<1>> translation, rotation;
   };

@@ -242,6 +242,7 @@ namespace glide
       std::unique_ptr<dealii::FunctionParser<dim>> translation; ///< or null
       std::unique_ptr<dealii::FunctionParser<dim>> rotation;
       dealii::Point<dim>                           center;
+      dealii::Tensor<1, 3>                         axis;
       std::vector<std::tuple<dealii::types::global_dof_index,
                              unsigned int,
                              dealii::Point<dim>>>

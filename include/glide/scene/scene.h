@@ -9,6 +9,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <array>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -32,11 +33,13 @@ namespace glide
     /// Body force per unit reference volume, ';'-separated components.
     std::string body_force;
     /// Meshed rigid body (P1.4): every node follows the rigid motion
-    /// x = c + T(t) + R_z(theta(t)) (X - c).
-    bool                rigid = false;
-    std::string         rigid_translation; ///< ';'-separated, of t
-    std::string         rigid_rotation;    ///< angle about z, of t
-    std::vector<double> rigid_center;
+    /// x = c + T(t) + R(theta(t)) (X - c), R about the unit axis
+    /// rigid_axis (z in 2D).
+    bool                  rigid = false;
+    std::string           rigid_translation; ///< ';'-separated, of t
+    std::string           rigid_rotation;    ///< angle about rigid_axis, of t
+    std::vector<double>   rigid_center;
+    std::array<double, 3> rigid_axis{{0., 0., 1.}};
   };
 
   /**
