@@ -488,8 +488,20 @@ namespace glide
         const auto         start = std::chrono::steady_clock::now();
         const unsigned int i     = &node - pair.nodes.data();
         const int held = i < pair.held_piece.size() ? pair.held_piece[i] : -1;
-        s.projection   = held >= 0 ? pair.surface->project_onto(held, s.x) :
-                                     pair.surface->project(s.x, 1.5 * node.size);
+        if (pair.cached.size() != pair.nodes.size())
+          pair.cached.resize(pair.nodes.size());
+        auto &c = pair.cached[i];
+        if (c.version != pair.surface->version() || c.x != s.x ||
+            c.held != held)
+          {
+            c.projection = held >= 0 ?
+                             pair.surface->project_onto(held, s.x) :
+                             pair.surface->project(s.x, 1.5 * node.size);
+            c.version    = pair.surface->version();
+            c.x          = s.x;
+            c.held       = held;
+          }
+        s.projection = c.projection;
         searching += std::chrono::steady_clock::now() - start;
         s.found = s.projection.found;
         s.gap =

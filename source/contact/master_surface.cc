@@ -500,11 +500,23 @@ namespace glide
   void
   MasterSurface<dim>::set_displacement(const VectorType &U, const bool search)
   {
+    bool moved = false;
     for (unsigned int k = 0; k < nodes.size(); ++k)
       for (unsigned int d = 0; d < dim; ++d)
-        x[k][d] = nodes[k].X[d] + (U.size() > 0 ? U[nodes[k].dofs[d]] : 0.);
-    if (!search)
+        {
+          const double v =
+            nodes[k].X[d] + (U.size() > 0 ? U[nodes[k].dofs[d]] : 0.);
+          moved   = moved || v != x[k][d];
+          x[k][d] = v;
+        }
+    if (moved)
+      {
+        ++positions_version;
+        searchable = false;
+      }
+    if (!search || searchable)
       return;
+    searchable = true;
     std::vector<Leaf> boxes;
     boxes.reserve(pieces.size());
     for (unsigned int i = 0; i < pieces.size(); ++i)
@@ -934,9 +946,28 @@ namespace glide
     std::vector<Leaf> candidates;
     tree.query(bgi::intersects(BoundingBox<dim>(std::make_pair(lo, hi))),
                std::back_inserter(candidates));
-    std::sort(candidates.begin(),
-              candidates.end(),
-              [](const Leaf &a, const Leaf &b) { return a.second < b.second; });
+    // Nearest boxes first: a projection inside a piece lies at distance
+    // |g| from the slave point (r = g n), so once one is found, pieces
+    // whose boxes are farther than |g| can neither beat it nor matter (a
+    // clamped point counts only where no piece contains the projection).
+    // Same result as trying every candidate, with ties still going to the
+    // lowest piece number.
+    std::vector<std::pair<double, unsigned int>> order;
+    order.reserve(candidates.size());
+    for (const auto &[box, i] : candidates)
+      {
+        double d2 = 0.;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double e =
+              std::max({box.get_boundary_points().first[d] - xs[d],
+                        0.,
+                        xs[d] - box.get_boundary_points().second[d]});
+            d2 += e * e;
+          }
+        order.emplace_back(std::sqrt(d2), i);
+      }
+    std::sort(order.begin(), order.end());
     // Clamped points: the closest one decides where the slave point meets
     // the master; the pieces that meet there compete by their extended
     // gaps, and the largest |g| wins (outside a convex corner the point is
@@ -947,14 +978,17 @@ namespace glide
     // slave nodes that almost touch a faceted corner.
     std::vector<std::pair<Projection, bool>> clamped;
     double best_distance = std::numeric_limits<double>::max();
-    for (const auto &candidate : candidates)
+    for (const auto &[box_distance, i] : order)
       {
-        const Projection p = project_on(candidate.second, xs);
+        if (best.found && box_distance > std::abs(best.gap))
+          break;
+        const Projection p = project_on(i, xs);
         if (!p.found)
           continue;
         if (!p.vertex)
           {
-            if (!best.found || std::abs(p.gap) < std::abs(best.gap))
+            if (!best.found || std::abs(p.gap) < std::abs(best.gap) ||
+                (std::abs(p.gap) == std::abs(best.gap) && p.piece < best.piece))
               best = p;
             continue;
           }
@@ -990,7 +1024,10 @@ namespace glide
     for (const auto &[p, beyond] : clamped)
       if ((p.point - meeting).norm() <= tolerance)
         {
-          if (!best_vertex.found || std::abs(p.gap) > std::abs(best_vertex.gap))
+          if (!best_vertex.found ||
+              std::abs(p.gap) > std::abs(best_vertex.gap) ||
+              (std::abs(p.gap) == std::abs(best_vertex.gap) &&
+               p.piece < best_vertex.piece))
             best_vertex = p;
           beyond_end = beyond_end || beyond;
         }

@@ -10,6 +10,8 @@
 
 #include <array>
 #include <chrono>
+#include <cstdint>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -213,6 +215,17 @@ namespace glide
       mutable std::vector<std::array<int, 2>> last_pieces;
       mutable std::vector<unsigned int>       returns;
       mutable std::vector<int>                held_piece;
+      /// Deformable masters: per node, the last projection with the slave
+      /// position, master version() and held piece it was computed for
+      /// (the residual and the Jacobian of one iterate share it).
+      struct CachedProjection
+      {
+        typename MasterSurface<dim>::Projection projection;
+        dealii::Point<dim>                      x;
+        std::uint64_t version = std::numeric_limits<std::uint64_t>::max();
+        int           held    = -1;
+      };
+      mutable std::vector<CachedProjection> cached;
       /// Written steps, for the .pvd file.
       std::vector<std::pair<double, std::string>> records;
     };

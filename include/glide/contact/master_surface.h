@@ -10,6 +10,7 @@
 #include <deal.II/numerics/rtree.h>
 
 #include <array>
+#include <cstdint>
 #include <map>
 #include <set>
 #include <string>
@@ -149,9 +150,19 @@ namespace glide
 
     /// Current positions x = X + u (U: displacement first), and, if
     /// @p search, the search tree of the pieces' bounding boxes (small
-    /// sliding never searches, R6.2).
+    /// sliding never searches, R6.2). Positions that did not change (the
+    /// Jacobian is set up at the iterate whose residual KINSOL just
+    /// evaluated) keep the tree and the version().
     void
     set_displacement(const VectorType &U, const bool search = true);
+
+    /// Changes whenever the node positions change: projections computed at
+    /// the same version and slave position are still valid.
+    std::uint64_t
+    version() const
+    {
+      return positions_version;
+    }
 
     /// Projection of the slave point @p x onto the pieces within 1.5 times
     /// the largest facet of it, or, where that finds none, within
@@ -289,6 +300,8 @@ namespace glide
     std::vector<Facet>              facets;
     std::vector<Piece>              pieces;
     std::vector<dealii::Point<dim>> x; ///< current node positions
+    std::uint64_t                   positions_version = 0;
+    bool                            searchable = false; ///< tree built for x
     /// 3D: per facet corner (lexicographic), the (facet, corner) pairs of
     /// all facets at that node.
     std::vector<
