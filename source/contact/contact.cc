@@ -326,8 +326,13 @@ namespace glide
                          x[d] + current_displacement(node.dofs[d]);
               pair.coupled[i] =
                 pair.surface->nodes_near(x, pair.surface->facet_size());
-              // ... and those of its projection now.
-              const auto projection = pair.surface->project(x, 1.5 * node.size);
+              // ... and those of its projection now (onto the piece it is
+              // held on, if it is).
+              const int held =
+                i < pair.held_piece.size() ? pair.held_piece[i] : -1;
+              const auto projection =
+                held >= 0 ? pair.surface->project_onto(held, x) :
+                            pair.surface->project(x, 1.5 * node.size);
               if (projection.found)
                 {
                   const auto used = pair.surface->nodes_of(projection);
@@ -487,6 +492,7 @@ namespace glide
       {
         const auto         start = std::chrono::steady_clock::now();
         const unsigned int i     = &node - pair.nodes.data();
+        AssertIndexRange(i, pair.nodes.size());
         const int held = i < pair.held_piece.size() ? pair.held_piece[i] : -1;
         if (pair.cached.size() != pair.nodes.size())
           pair.cached.resize(pair.nodes.size());
@@ -650,8 +656,11 @@ namespace glide
                 // A node whose projection keeps going back to the piece it
                 // left (A, B, A, B) is held on its piece for the rest of the
                 // solve: its gap is then measured to that facet's plane.
+                // Faceted masters only: a smoothed master has no corners
+                // (holding a node on one piece of a smoothed surface while
+                // the ironing die slid on made the run fail).
                 if (pair.surface && !pair.small && s.found && s.closed &&
-                    pair.held_piece[i] < 0)
+                    pair.parameters->smoothing == 0. && pair.held_piece[i] < 0)
                   {
                     auto     &last  = pair.last_pieces[i];
                     const int piece = s.projection.piece;
@@ -840,6 +849,7 @@ namespace glide
               text << "(" << node.X << ")";
               held.push_back(text.str());
             }
+        difference = Utilities::MPI::max(difference, comm);
         std::ostringstream after;
         after << " slave node(s) held on one master facet in this step (their "
                  "projection alternated between facets meeting at a corner; "

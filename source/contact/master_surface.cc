@@ -916,6 +916,37 @@ namespace glide
   }
 
   template <int dim>
+  bool
+  MasterSurface<dim>::beyond_end(const Projection &p) const
+  {
+    // Clamped at a side beyond which there is no master: not in contact
+    // through this piece.
+    const Piece &piece  = pieces[p.piece];
+    bool         beyond = false;
+    for (unsigned int b = 0; b < dim - 1; ++b)
+      if (p.clamped[b])
+        {
+          if (dim == 2 && piece.kind == PieceKind::lagrange)
+            beyond = beyond || (p.xi[b] <= 0. && piece.begin < 0.) ||
+                     (p.xi[b] >= 1. && piece.end > 1.);
+          if (dim == 3)
+            beyond = beyond || p.xi[b] < 0. || p.xi[b] > 1.;
+        }
+    return beyond;
+  }
+
+  template <int dim>
+  typename MasterSurface<dim>::Projection
+  MasterSurface<dim>::project_onto(const unsigned int piece,
+                                   const Point<dim>  &xs) const
+  {
+    Projection p = project_on(piece, xs);
+    if (p.found && p.vertex && beyond_end(p))
+      p.found = false;
+    return p;
+  }
+
+  template <int dim>
   typename MasterSurface<dim>::Projection
   MasterSurface<dim>::project(const Point<dim> &xs,
                               const double      search_radius) const
@@ -992,26 +1023,15 @@ namespace glide
               best = p;
             continue;
           }
-        // Clamped at a side beyond which there is no master: not in
-        // contact through this piece.
-        const Piece &piece  = pieces[p.piece];
-        bool         beyond = false;
-        for (unsigned int b = 0; b < dim - 1; ++b)
-          if (p.clamped[b])
-            {
-              if (dim == 2 && piece.kind == PieceKind::lagrange)
-                beyond = beyond || (p.xi[b] <= 0. && piece.begin < 0.) ||
-                         (p.xi[b] >= 1. && piece.end > 1.);
-              if (dim == 3)
-                beyond = beyond || p.xi[b] < 0. || p.xi[b] > 1.;
-            }
         best_distance = std::min(best_distance, (xs - p.point).norm());
-        clamped.emplace_back(p, beyond);
+        clamped.emplace_back(p, beyond_end(p));
       }
     if (best.found)
       return best;
-    // The closest point, and of the pieces there the largest |g|; if the
-    // point lies beyond the end of the master, not in contact.
+    // The closest point, and of the pieces there the largest |g| (with
+    // more than two pieces at a 3D node: the largest positive gap if there
+    // is one, the point is outside; else the most negative); if the point
+    // lies beyond the end of the master, not in contact.
     const double tolerance = 1e-8 * max_size;
     Point<dim>   meeting;
     for (const auto &[p, beyond] : clamped)
@@ -1024,10 +1044,12 @@ namespace glide
     for (const auto &[p, beyond] : clamped)
       if ((p.point - meeting).norm() <= tolerance)
         {
-          if (!best_vertex.found ||
-              std::abs(p.gap) > std::abs(best_vertex.gap) ||
-              (std::abs(p.gap) == std::abs(best_vertex.gap) &&
-               p.piece < best_vertex.piece))
+          const bool outside = p.gap > 0., best_outside = best_vertex.gap > 0.;
+          if (!best_vertex.found || (outside && !best_outside) ||
+              (outside == best_outside &&
+               (std::abs(p.gap) > std::abs(best_vertex.gap) ||
+                (std::abs(p.gap) == std::abs(best_vertex.gap) &&
+                 p.piece < best_vertex.piece))))
             best_vertex = p;
           beyond_end = beyond_end || beyond;
         }

@@ -19,8 +19,8 @@ namespace glide
       {
         char        *end = nullptr;
         const double v   = std::strtod(parts[d].c_str(), &end);
-        numbers          = end && *end == '\0' && !parts[d].empty();
-        axis[d]          = v;
+        numbers = end && *end == '\0' && !parts[d].empty() && std::isfinite(v);
+        axis[d] = v;
       }
     require(numbers,
             "Parameter '" + parameter + "' = '" + text +

@@ -111,6 +111,11 @@ TEST(RigidMaster, RotationAboutAnyAxisIn3D)
   // to (1, 1, 0) (z turns into -y about x).
   const auto x = m.move(Point<3>(1., 2., 1.), 0., 1.);
   EXPECT_NEAR((x - Point<3>(1., 1., 0.)).norm(), 0., 1e-12);
+  // From a turned state on: the way back (-theta(0.5)) and forward again
+  // gives the same point as going from the reference.
+  const auto half = m.move(Point<3>(1., 2., 1.), 0., 0.5);
+  EXPECT_NEAR((m.move(half, 0.5, 1.) - x).norm(), 0., 1e-12);
+  EXPECT_GT((half - x).norm(), 0.5) << "half-way is a different point";
   // A plane normal along y turned about x by 90 degrees: along z.
   auto plane          = rigid(MasterType::rigid_plane);
   plane.rotation      = "pi/2*t";

@@ -209,7 +209,8 @@ namespace glide
       /// (A, B, A), and the piece the node is held on for the rest of the
       /// solve after `maximum_returns` of them (-1: none). At a faceted
       /// corner the force direction jumps between the facets' normals, and
-      /// Newton can alternate between them forever. Holding on into the
+      /// Newton can alternate between them forever (f = 0 only: a smoothed
+      /// master has no corners). Holding on into the
       /// next step was tried: the held nodes accumulated and the 2D Hertz
       /// peak pressure with f = 0 went from 2 % to 12 % too high.
       mutable std::vector<std::array<int, 2>> last_pieces;

@@ -176,11 +176,9 @@ namespace glide
     /// its edge or node: the gap to the piece's tangent plane there); for a
     /// slave node held on one piece while its projection alternates
     /// between pieces that meet at a faceted corner.
+    /// Beyond the end of the master: not in contact.
     Projection
-    project_onto(const unsigned int piece, const dealii::Point<dim> &x) const
-    {
-      return project_on(piece, x);
-    }
+    project_onto(const unsigned int piece, const dealii::Point<dim> &x) const;
 
     /// Linearization at projection @p p of the slave point @p x with slave
     /// DoFs @p slave_dofs.
@@ -291,6 +289,10 @@ namespace glide
 
     Projection
     project_on(const unsigned int piece, const dealii::Point<dim> &x) const;
+    /// Is the clamped projection @p p at a side of its piece beyond which
+    /// there is no master (the end of a 2D chain, a 3D boundary edge)?
+    bool
+    beyond_end(const Projection &p) const;
 
     /// Nodes of the facets that share a node with @p facet (3D smoothing).
     std::vector<unsigned int>
