@@ -133,7 +133,7 @@ def deformable_lines(results):
                          f"{100 * e['search_share']:.1f} % |")
         else:
             lines.append(f"| {f} | did not finish: {e['error']} | | | | | | | |")
-    lines += ["## Unsymmetric against symmetrized Jacobian (R5.2)", "",
+    lines += ["", "## Unsymmetric against symmetrized Jacobian (R5.2)", "",
               "`parameters/hertz-3d-elastic.prm`: quarter model of an elastic sphere (the master, "
               "faceted, normals blended with f = 0.2, so the force direction is not the gap "
               "gradient and the consistent Jacobian is unsymmetric) pressed into an elastic block, "
@@ -201,7 +201,9 @@ def ironing_lines(results):
              "every attempt of a step that converged; cut-backs add failed attempts. The runs go two "
              "at a time, so times compare only roughly. In 2D with a smoothed master the force direction is "
              "the gap gradient, so the unsymmetric and the symmetrized Jacobian coincide (same rows, same "
-             "iterations); they differ only where a slave node touches a faceted vertex.", "",
+             "iterations); they differ only where a slave node touches a faceted vertex. With the faceted "
+             "die (f = 0) slab nodes at die vertices are held on one facet when they alternate "
+             "(doc/theory/node-to-surface.md, 'Held pieces').", "",
              "| master | Jacobian | reached load factor | steps | A normal | mean normal force | tangential range / normal | mean / max Newton its per step | cut-backs | time [s] | contact share |",
              "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for key, e in results.items():
