@@ -437,20 +437,13 @@ def case_rigid_punch_meshed():
         check(all(r["kinsol_iterations"] <= 4 for r in rows), f"small sliding, {formulation}: at most 4 iterations")
 
 
-def case_rigid_body_rotation():
-    """P1.4 meshed rigid body, rotation: the punch of
-    parameters/rigid-punch-meshed.prm lifted 0.5 and turned by pi/2 about
-    its center (0, 1) (clear of the block, so no contact). In the last
-    VTU every point of the punch (material_id 1) has the displacement of
-    the rigid motion, c + T + R(pi/2) (X - c) - X, to the VTU's single
-    precision (measured 6.7e-8; a wrong sign or axis of the rotation gives
-    differences of order 1); the block does not move."""
+def rigid_body_points(out, name, material):
+    """Reference points and displacements of the points of the cells with
+    material id @p material in the last VTU of run @p name, and those of
+    the other points."""
     import vtk
     from vtk.util.numpy_support import vtk_to_numpy
-    _, _, out = run(scene_file("rigid-punch-meshed.prm"), "Body punch/Rigid body/Translation=0; 0.5*t",
-                    "Body punch/Rigid body/Rotation=pi/2*t", "Body punch/Rigid body/Rotation center=0, 1",
-                    name="turn")
-    files = re.findall(r'file="([^"]+)"', open(os.path.join(out, "turn.pvd")).read())
+    files = re.findall(r'file="([^"]+)"', open(os.path.join(out, f"{name}.pvd")).read())
     r = vtk.vtkXMLUnstructuredGridReader()
     r.SetFileName(os.path.join(out, files[-1]))
     r.Update()
@@ -461,13 +454,29 @@ def case_rigid_body_rotation():
         else vtk_to_numpy(grid.GetPointData().GetArray("material_id"))
     if len(mat) == grid.GetNumberOfCells():
         ids = vtk.vtkIdList()
-        punch = set()
+        body = set()
         for c in range(grid.GetNumberOfCells()):
-            if mat[c] == 1:
+            if mat[c] == material:
                 grid.GetCellPoints(c, ids)
-                punch.update(ids.GetId(k) for k in range(ids.GetNumberOfIds()))
+                body.update(ids.GetId(k) for k in range(ids.GetNumberOfIds()))
     else:
-        punch = {i for i in range(len(mat)) if mat[i] == 1}
+        body = {i for i in range(len(mat)) if mat[i] == material}
+    rest = [i for i in range(len(X)) if i not in body]
+    return X, u, sorted(body), rest
+
+
+def case_rigid_body_rotation():
+    """P1.4 meshed rigid body, rotation: the punch of
+    parameters/rigid-punch-meshed.prm lifted 0.5 and turned by pi/2 about
+    its center (0, 1) (clear of the block, so no contact). In the last
+    VTU every point of the punch (material_id 1) has the displacement of
+    the rigid motion, c + T + R(pi/2) (X - c) - X, to the VTU's single
+    precision (measured 6.7e-8; a wrong sign or axis of the rotation gives
+    differences of order 1); the block does not move."""
+    _, _, out = run(scene_file("rigid-punch-meshed.prm"), "Body punch/Rigid body/Translation=0; 0.5*t",
+                    "Body punch/Rigid body/Rotation=pi/2*t", "Body punch/Rigid body/Rotation center=0, 1",
+                    name="turn")
+    X, u, punch, rest = rigid_body_points(out, "turn", 1)
     check(len(punch) > 10, f"{len(punch)} punch points")
     worst = 0.0
     for i in punch:
@@ -477,8 +486,34 @@ def case_rigid_body_rotation():
         worst = max(worst, abs(u[i][0] - ex), abs(u[i][1] - ey))
     # The VTU holds single-precision numbers: round-off about 1e-7 here.
     check(worst < 1e-6, f"punch displacement = rigid motion (largest difference {worst:.2e})")
-    rest = [i for i in range(len(X)) if i not in punch]
     check(max(abs(u[i][0]) + abs(u[i][1]) for i in rest) < 1e-12, "the block does not move")
+
+
+def case_rigid_body_rotation_3d():
+    """P1.4 meshed rigid body turned about an axis other than z: the sphere
+    octant of parameters/hertz-3d-elastic.prm made rigid, lifted 1 and
+    turned by pi/2 about the x axis through its center (0, 1, 0), clear of
+    the block (the block keeps only its own supports). Every sphere point
+    moves by c + T + R_x(pi/2) (X - c) - X, i.e. (y, z) - c -> (-(z - cz),
+    y - cy), to the VTU's single precision; a rotation about z, or the
+    opposite sense, is off by order 1; the block does not move. The sphere
+    is locally refined: its hanging nodes on the curved surface move
+    rigidly too (without the correction of their constraints: 5.2e-3)."""
+    _, _, out = run(scene_file("hertz-3d-elastic.prm"), "Body sphere/Rigid body/Rigid=true",
+                    "Body sphere/Rigid body/Translation=0; t; 0", "Body sphere/Rigid body/Rotation=pi/2*t",
+                    "Body sphere/Rigid body/Rotation center=0, 1, 0", "Body sphere/Rigid body/Rotation axis=1, 0, 0",
+                    "Boundary condition press/Surface=block.bottom", "Boundary condition press/Function=0; 0; 0",
+                    "Boundary condition xsymm/Surface=block.left", "Boundary condition zsymm/Surface=block.back",
+                    "Load stepping/Number of steps=1", name="turn3d")
+    X, u, sphere, rest = rigid_body_points(out, "turn3d", 0)
+    check(len(sphere) > 10, f"{len(sphere)} sphere points")
+    worst = 0.0
+    for i in sphere:
+        dy, dz = X[i][1] - 1.0, X[i][2] - 0.0
+        expected = (0.0, 1.0 + 1.0 - dz - X[i][1], dy - X[i][2])
+        worst = max(worst, *(abs(u[i][d] - expected[d]) for d in range(3)))
+    check(worst < 1e-6, f"sphere displacement = rigid motion about x (largest difference {worst:.2e})")
+    check(max(sum(abs(u[i][d]) for d in range(3)) for i in rest) < 1e-12, "the block does not move")
 
 
 def case_contact_mpi_matches_serial():
