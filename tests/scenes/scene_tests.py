@@ -55,6 +55,16 @@ def run(scene, *sets, name=None, expect_status=0, mpi=False, output=None):
     return rows, log, os.path.join(output, name)
 
 
+def hertz_3d_peak(rows, out):
+    """Peak nodal pressure of the quarter model hertz-3d-elastic.prm (pair
+    'hertz') and the Hertz p0 for its measured force (two elastic bodies,
+    E = 1, nu = 0.3, R = 1)."""
+    F = -4 * rows[-1]["contact_hertz_force_y"]
+    e_star = 1 / (2 * (1 - 0.3 ** 2))
+    a = (3 * F / (4 * e_star)) ** (1 / 3)
+    return max(n["CPRESS"] for n in contact_nodes(out, "hertz")), 3 * F / (2 * math.pi * a * a)
+
+
 def scene_file(name):
     return os.path.join(ROOT, "parameters", name)
 
@@ -934,11 +944,7 @@ def case_surface_to_surface_small_sliding():
 
     rows, _, out = run(scene_file("hertz-3d-elastic.prm"), "Output/Write VTU=false", "Contact pair hertz/Sliding=small",
                        "Contact pair hertz/Formulation=surface to surface", name="three")
-    F = -4 * rows[-1]["contact_hertz_force_y"]
-    e_star = 1 / (2 * (1 - 0.3 ** 2))
-    a = (3 * F / (4 * e_star)) ** (1 / 3)
-    p0 = 3 * F / (2 * math.pi * a * a)
-    p0h = max(n["CPRESS"] for n in contact_nodes(out, "hertz"))
+    p0h, p0 = hertz_3d_peak(rows, out)
     print(f"measured: 3D peak nodal pressure {p0h / p0:.3f} p0")
     close(p0h, p0, 0.2, "3D peak pressure against Hertz")
     check(all(r["kinsol_iterations"] <= 6 and r["cut_backs"] == 0 for r in rows), "3D: at most 6 iterations per step")
@@ -1165,11 +1171,7 @@ def case_hertz_3d_deformable_master():
     close(results["symmetrized"][0][-1]["contact_hertz_force_y"], results["unsymmetric"][0][-1]["contact_hertz_force_y"],
           1e-8, "same answer with the symmetrized Jacobian")
     rows, out = results["unsymmetric"]
-    F = -4 * rows[-1]["contact_hertz_force_y"]
-    e_star = 1 / (2 * (1 - 0.3 ** 2))
-    a = (3 * F / (4 * e_star)) ** (1 / 3)
-    p0 = 3 * F / (2 * math.pi * a * a)
-    p0h = max(n["CPRESS"] for n in contact_nodes(out, "hertz"))
+    p0h, p0 = hertz_3d_peak(rows, out)
     print(f"measured: peak nodal pressure {p0h / p0:.3f} p0")
     close(p0h, p0, 0.2, "peak pressure against Hertz")
 
