@@ -964,6 +964,7 @@ def case_surface_to_surface_small_sliding():
                        "Body block/Refinement/Local refinements=4", "Contact pair hertz/Sliding=small",
                        "Contact pair hertz/Formulation=surface to surface", name="axi")
     F = rows[-1]["reaction_ground_y"]
+    e_star = 1 / (2 * (1 - 0.3 ** 2))
     a = (3 * F / (4 * e_star)) ** (1 / 3)
     p0 = 3 * F / (2 * math.pi * a * a)
     nodes = sorted(contact_nodes(out, "hertz"), key=lambda n: n["X"])
