@@ -10,12 +10,20 @@ namespace glide_test
 {
   /// Write @p text to a fresh file @p name in a scratch directory under
   /// the system's temporary directory (never the source tree) and return
-  /// its path.
+  /// its path. The directory is the running test's own: ctest runs the
+  /// tests in parallel, and two tests writing the same file name would
+  /// read each other's scenes.
   inline std::string
   write_file(const std::string &name, const std::string &text)
   {
-    const auto directory =
-      std::filesystem::temp_directory_path() / "glide-unit-tests";
+    const ::testing::TestInfo *test =
+      ::testing::UnitTest::GetInstance()->current_test_info();
+    const std::string test_name =
+      test == nullptr ?
+        std::string("outside-a-test") :
+        std::string(test->test_suite_name()) + "." + test->name();
+    const auto directory = std::filesystem::temp_directory_path() /
+                           "glide-unit-tests" / test_name;
     std::filesystem::create_directories(directory);
     const std::string path = (directory / name).string();
     std::ofstream     out(path);
