@@ -14,10 +14,12 @@
 
 #include <sys/resource.h>
 
+#include <cmath>
 #include <exception>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 namespace glide
@@ -212,7 +214,41 @@ namespace glide
             callbacks.solve_jacobian(F, W);
             W += U0;
             elasticity.constraints_at(t_new).distribute(W);
-            U_trial = W;
+            // Keep the prediction only where it starts KINSOL closer to
+            // equilibrium than U_trial does (KINSOL's scaled max-norm): at
+            // the contact states where the projection changes piece (a
+            // faceted master) the linearization at U0 can throw the
+            // prediction far off, into inverted elements, for any load
+            // increment however small.
+            const auto scaled_norm = [&](const VectorType &u) {
+              try
+                {
+                  VectorType R(owned, comm);
+                  callbacks.residual(u, R);
+                  R.scale(residual_scale);
+                  const double norm = R.linfty_norm();
+                  return std::isfinite(norm) ?
+                           norm :
+                           std::numeric_limits<double>::infinity();
+                }
+              catch (const InputError &)
+                {
+                  throw;
+                }
+              catch (const std::exception &)
+                {
+                  // An inverted element.
+                  return std::numeric_limits<double>::infinity();
+                }
+            };
+            const double predicted = scaled_norm(W);
+            if (predicted < std::numeric_limits<double>::infinity() &&
+                predicted <= scaled_norm(U_trial))
+              U_trial = W;
+            else
+              pcout << "  predictor not used (its residual is larger than "
+                       "that of the last converged state)"
+                    << std::endl;
           }
         catch (const InputError &)
           {

@@ -414,7 +414,10 @@ namespace glide
         pair.switches.assign(pair.nodes.size(), 0);
         pair.last_pieces.assign(pair.nodes.size(), {{-1, -1}});
         pair.returns.assign(pair.nodes.size(), 0);
-        pair.held_piece.assign(pair.nodes.size(), -1);
+        if (pair.carried_piece.size() == pair.nodes.size())
+          pair.held_piece = pair.carried_piece;
+        else
+          pair.held_piece.assign(pair.nodes.size(), -1);
       }
   }
 
@@ -829,32 +832,49 @@ namespace glide
                             const double      t_new)
   {
     move_surfaces(U);
-    for (const auto &pair : pairs)
+    for (auto &pair : pairs)
       {
-        // How far the held gaps are from those of the free projection.
+        // How far the held gaps are from those of the free projection, and
+        // which holds carry into the next step: those of closed nodes
+        // within hold_band facet sizes of their piece's end.
         std::vector<std::string> held;
-        double                   difference = 0.;
+        double                   difference = 0., overshoot = 0.;
+        unsigned int             carried = 0;
+        pair.carried_piece.assign(pair.nodes.size(), -1);
         for (unsigned int i = 0; i < pair.held_piece.size(); ++i)
           if (pair.held_piece[i] >= 0)
             {
-              const auto  &node = pair.nodes[i];
-              const double g    = state(pair, node, U).gap;
-              Point<dim>   x    = node.X;
-              for (unsigned int d = 0; d < dim; ++d)
-                x[d] += U[node.dofs[d]];
-              const auto free = pair.surface->project(x, 1.5 * node.size);
+              const auto     &node = pair.nodes[i];
+              const NodeState s    = state(pair, node, U);
+              const auto free = pair.surface->project(s.x, 1.5 * node.size);
               if (free.found)
-                difference = std::max(difference, std::abs(free.gap - g));
+                difference = std::max(difference, std::abs(free.gap - s.gap));
+              // The distance along the piece's tangent plane from the end
+              // of the piece to the node (0 inside the piece).
+              Tensor<1, dim> r = s.x - s.projection.point;
+              r -= (r * s.projection.normal) * s.projection.normal;
+              const double past = s.projection.vertex ? r.norm() : 0.;
+              overshoot         = std::max(overshoot, past);
+              if (s.found && s.closed &&
+                  past <= hold_band * pair.surface->facet_size())
+                {
+                  pair.carried_piece[i] = pair.held_piece[i];
+                  ++carried;
+                }
               std::ostringstream text;
               text << "(" << node.X << ")";
               held.push_back(text.str());
             }
         difference = Utilities::MPI::max(difference, comm);
+        overshoot  = Utilities::MPI::max(overshoot, comm);
+        carried    = Utilities::MPI::sum(carried, comm);
         std::ostringstream after;
         after << " slave node(s) held on one master facet in this step (their "
                  "projection alternated between facets meeting at a corner; "
                  "the gap is measured to that facet's plane, at most "
-              << difference << " from the free projection's)";
+              << difference << " from the free projection's, at most "
+              << overshoot << " past the facet's end; " << carried
+              << " of them stay held into the next step)";
         report(
           held, "contact pair '" + pair.parameters->name + "': ", after.str());
       }
