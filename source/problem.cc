@@ -247,7 +247,8 @@ namespace glide
               U_trial = W;
             else
               pcout << "  predictor not used (its residual is larger than "
-                       "that of the last converged state)"
+                       "that of the last converged state with the new "
+                       "prescribed values, or it inverts an element)"
                     << std::endl;
           }
         catch (const InputError &)

@@ -414,10 +414,7 @@ namespace glide
         pair.switches.assign(pair.nodes.size(), 0);
         pair.last_pieces.assign(pair.nodes.size(), {{-1, -1}});
         pair.returns.assign(pair.nodes.size(), 0);
-        if (pair.carried_piece.size() == pair.nodes.size())
-          pair.held_piece = pair.carried_piece;
-        else
-          pair.held_piece.assign(pair.nodes.size(), -1);
+        pair.held_piece.assign(pair.nodes.size(), -1);
       }
   }
 
@@ -832,15 +829,12 @@ namespace glide
                             const double      t_new)
   {
     move_surfaces(U);
-    for (auto &pair : pairs)
+    for (const auto &pair : pairs)
       {
         // How far the held gaps are from those of the free projection, and
-        // which holds carry into the next step: those of closed nodes
-        // within hold_band facet sizes of their piece's end.
+        // the held nodes from the end of their piece.
         std::vector<std::string> held;
         double                   difference = 0., overshoot = 0.;
-        unsigned int             carried = 0;
-        pair.carried_piece.assign(pair.nodes.size(), -1);
         for (unsigned int i = 0; i < pair.held_piece.size(); ++i)
           if (pair.held_piece[i] >= 0)
             {
@@ -855,26 +849,18 @@ namespace glide
               r -= (r * s.projection.normal) * s.projection.normal;
               const double past = s.projection.vertex ? r.norm() : 0.;
               overshoot         = std::max(overshoot, past);
-              if (s.found && s.closed &&
-                  past <= hold_band * pair.surface->facet_size())
-                {
-                  pair.carried_piece[i] = pair.held_piece[i];
-                  ++carried;
-                }
               std::ostringstream text;
               text << "(" << node.X << ")";
               held.push_back(text.str());
             }
         difference = Utilities::MPI::max(difference, comm);
         overshoot  = Utilities::MPI::max(overshoot, comm);
-        carried    = Utilities::MPI::sum(carried, comm);
         std::ostringstream after;
         after << " slave node(s) held on one master facet in this step (their "
                  "projection alternated between facets meeting at a corner; "
                  "the gap is measured to that facet's plane, at most "
               << difference << " from the free projection's, at most "
-              << overshoot << " past the facet's end; " << carried
-              << " of them stay held into the next step)";
+              << overshoot << " past the facet's end)";
         report(
           held, "contact pair '" + pair.parameters->name + "': ", after.str());
       }

@@ -131,7 +131,8 @@ namespace glide
       "elements next to the prescribed nodes are not distorted or inverted; "
       "it costs one Jacobian and one linear solve, not counted in the "
       "Newton iterations (steps with loads only need none: KINSOL's first "
-      "iteration is that solve). 'none': the "
+      "iteration is that solve); the prediction is kept only where its "
+      "residual is no larger than that of the 'none' start. 'none': the "
       "last converged state with the new prescribed values.");
     prm.leave_subsection();
   }

@@ -210,19 +210,17 @@ namespace glide
       /// solve after `maximum_returns` of them (-1: none). At a faceted
       /// corner the force direction jumps between the facets' normals, and
       /// Newton can alternate between them forever (f = 0 only: a smoothed
-      /// master has no corners).
+      /// master has no corners). The holds end with the solve. Carrying
+      /// those still within 2 % of a facet of their piece into the next
+      /// step was tried: the faceted ironing die's press took 10 instead of
+      /// 39 cut-backs, but the full ironing run then stopped at load factor
+      /// 0.785 (it finishes without). Holding on without such a band let
+      /// the held nodes accumulate: the 2D Hertz peak pressure with f = 0
+      /// went from 2 % to 12 % too high, and the ironing die's nodes ended
+      /// up 1.7 past their facets.
       mutable std::vector<std::array<int, 2>> last_pieces;
       mutable std::vector<unsigned int>       returns;
       mutable std::vector<int>                held_piece;
-      /// The holds carried into the next solve (set after a converged step,
-      /// -1: none): those of closed nodes still within `hold_band` facet
-      /// sizes of their piece. Releasing every hold at the start of a step
-      /// threw the faceted ironing die's nodes, which sit at die vertices,
-      /// out of equilibrium (a scaled residual of 1.5 after a load increment
-      /// of 1e-5). Holding on without a band was tried earlier: the held
-      /// nodes accumulated and the 2D Hertz peak pressure with f = 0 went
-      /// from 2 % to 12 % too high.
-      std::vector<int> carried_piece;
       /// Deformable masters: per node, the last projection with the slave
       /// position, master version() and held piece it was computed for
       /// (the residual and the Jacobian of one iterate share it).
@@ -331,8 +329,5 @@ namespace glide
     /// Returns to the piece before (A, B, A) after which a slave node is
     /// held on its piece for the rest of the solve.
     static constexpr unsigned int maximum_returns = 2;
-    /// How far past the end of its piece, in master facet sizes, a held
-    /// node may lie for its hold to carry into the next load step.
-    static constexpr double hold_band = 0.02;
   };
 } // namespace glide
