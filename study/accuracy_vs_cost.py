@@ -209,8 +209,8 @@ def ironing_lines(results):
              "die (f = 0) slab nodes at die vertices are held on one facet when they alternate "
              "(doc/theory/node-to-surface.md, 'Held pieces'), and a step's tangent prediction is used only "
              "where it lowers the residual (before, the faceted run stopped at load factor 0.25, the end "
-             "of the press); it needs many more cut-backs (inverted slab elements and cycling at the "
-             "edges of the contact zone). Its ripple is that of the smoothed die: the die's facets (0.026) "
+             "of the press); it needs many more cut-backs, most of them for active-set cycling and "
+             "inverted elements (the log says why each step failed). Its ripple is that of the smoothed die: the die's facets (0.026) "
              "are ten times shorter than the slab's (0.25).", "",
              "| master | Jacobian | reached load factor | steps | A normal | mean normal force | tangential range / normal | mean / max Newton its per step | cut-backs | time [s] | contact share |",
              "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
