@@ -1,7 +1,3 @@
-#include <glide/contact/contact.h>
-#include <glide/mechanics/elasticity.h>
-#include <glide/output/statistics.h>
-#include <glide/output/vtu_writer.h>
 #include <glide/problem.h>
 #include <glide/scene/input_error.h>
 #include <glide/solver/linear_solver.h>
@@ -17,6 +13,7 @@
 #include <cmath>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -47,17 +44,24 @@ namespace glide
   } // namespace
 
   template <int dim>
-  void
-  run_scene_with(const Scene        &scene,
-                 MPI_Comm            comm,
-                 ConditionalOStream &pcout,
-                 TimerOutput        &timer)
-  {
-    Timer wall(comm);
+  Problem<dim>::Problem(const Scene        &scene,
+                        MPI_Comm            comm,
+                        ConditionalOStream &pcout,
+                        TimerOutput        &timer)
+    : scene(scene)
+    , comm(comm)
+    , pcout(pcout)
+    , timer(timer)
+    , elasticity(scene, comm, timer)
+    , contact(scene, elasticity, comm)
+    , linear_solver(scene.linear_solver, comm)
+  {}
 
-    Elasticity<dim> elasticity(scene, comm, timer);
+  template <int dim>
+  void
+  Problem<dim>::setup()
+  {
     elasticity.setup(); // every input check happens here, before output
-    Contact<dim> contact(scene, elasticity, comm);
     {
       TimerOutput::Scope t(timer, "setup");
       contact.setup(elasticity.get_dof_handler().n_dofs());
@@ -66,20 +70,42 @@ namespace glide
                             [&](DynamicSparsityPattern &dsp) {
                               contact.add_sparsity(dsp);
                             });
-
-    const auto &dof_handler = elasticity.get_dof_handler();
-    // The Jacobian outlives the linear solver: Amesos keeps a pointer to it.
-    MatrixType jacobian;
     jacobian.reinit(elasticity.matrix_pattern());
-    LinearSolver linear_solver(scene.linear_solver, comm);
-    const bool   saddle_point = contact.n_multipliers() > 0;
+    const bool saddle_point = contact.n_multipliers() > 0;
     require(
       !(saddle_point && scene.linear_solver.type == "amg"),
       "In scene file '" + scene.file +
         "': 'Linear solver/Type = amg' cannot solve the saddle-point systems of hard contact; "
         "use 'direct' (or 'automatic'), or 'Enforcement = penalty'.");
-    linear_solver.choose(dim, saddle_point ? 0 : dof_handler.n_dofs());
+    const auto &dof_handler = elasticity.get_dof_handler();
+    if (linear_solver.choose(dim, saddle_point ? 0 : dof_handler.n_dofs()) ==
+        "amg")
+      modes = elasticity.rigid_body_modes();
 
+    const auto &owned = elasticity.locally_owned();
+    U.reinit(owned, comm);
+    // KINSOL's scalings: force rows by 1/(E_b A_ref) with E_b the modulus
+    // of the row's body, displacements by 1/L, contact rows and forces by
+    // 1/(E_pair A_ref) with E_pair the pair's contact modulus.
+    residual_scale.reinit(owned, comm);
+    solution_scale.reinit(owned, comm);
+    residual_scale = elasticity.residual_scale();
+    elasticity.residual_scales(residual_scale);
+    solution_scale = 1. / elasticity.length_scale();
+    contact.set_scaling(residual_scale, solution_scale);
+
+    newton = std::make_unique<NonlinearSolver>(scene.nonlinear_solver, comm);
+    NonlinearSolverParameters damped_parameters = scene.nonlinear_solver;
+    damped_parameters.strategy                  = "line search";
+    damped = std::make_unique<NonlinearSolver>(damped_parameters, comm);
+    setup_callbacks();
+  }
+
+  template <int dim>
+  void
+  Problem<dim>::print_summary() const
+  {
+    const auto &dof_handler = elasticity.get_dof_handler();
     pcout << "glide: scene '" << scene.name << "' (" << scene.file << ")\n"
           << "  analysis:       " << scene.analysis_name() << ", " << dim
           << "D, degree " << scene.degree
@@ -100,11 +126,14 @@ namespace glide
     for (unsigned int i = 0; i < effects.size(); ++i)
       pcout << (i ? "; " : "") << effects[i];
     pcout << std::endl;
-    for (const auto &m : contact.take_messages())
-      pcout << "  " << m << std::endl;
+  }
 
+  template <int dim>
+  void
+  Problem<dim>::prepare_output()
+  {
     // Output goes to <directory>/<scene name>/; only now, after all checks.
-    const std::string directory = scene.output.directory + "/" + scene.name;
+    directory = scene.output.directory + "/" + scene.name;
     if (Utilities::MPI::this_mpi_process(comm) == 0)
       {
         std::filesystem::create_directories(directory);
@@ -119,20 +148,33 @@ namespace glide
           }
       }
     MPI_Barrier(comm);
-    Statistics     statistics(directory + "/statistics.csv", comm);
-    VtuWriter<dim> vtu(elasticity, directory, scene.name);
+    statistics =
+      std::make_unique<Statistics>(directory + "/statistics.csv", comm);
+    vtu = std::make_unique<VtuWriter<dim>>(elasticity, directory, scene.name);
+  }
 
-    std::vector<VectorType> modes;
-    if (linear_solver.choose(dim, saddle_point ? 0 : dof_handler.n_dofs()) ==
-        "amg")
-      modes = elasticity.rigid_body_modes();
+  template <int dim>
+  void
+  Problem<dim>::rebuild_pattern()
+  {
+    pcout << "    contact: sparsity pattern rebuilt (sliding)" << std::endl;
+    linear_solver.clear(); // it refers to the old matrix
+    elasticity.setup_system(contact.owned_multipliers(),
+                            [&](DynamicSparsityPattern &dsp) {
+                              contact.add_sparsity(dsp);
+                            });
+    jacobian.reinit(elasticity.matrix_pattern());
+  }
 
-    const auto                &owned = elasticity.locally_owned();
-    VectorType                 U(owned, comm);
-    double                     t = 0.;
-    NonlinearSolver::Callbacks callbacks;
-    callbacks.reinit_vector = [&](VectorType &v) { v.reinit(owned, comm); };
-    callbacks.residual      = [&](const VectorType &u, VectorType &F) {
+  template <int dim>
+  void
+  Problem<dim>::setup_callbacks()
+  {
+    const auto &owned       = elasticity.locally_owned();
+    callbacks.reinit_vector = [this, &owned](VectorType &v) {
+      v.reinit(owned, comm);
+    };
+    callbacks.residual = [this](const VectorType &u, VectorType &F) {
       elasticity.residual(u, t, F);
       if (contact.active())
         {
@@ -140,18 +182,21 @@ namespace glide
           contact.assemble(u, &F, nullptr);
         }
     };
-    callbacks.setup_jacobian = [&](const VectorType &u) {
-      if (contact.active() && contact.needs_new_pattern(u))
+    callbacks.setup_jacobian = [this](const VectorType &u) {
+      if (contact.active())
         {
-          // A slave node slid onto master facets outside the pattern.
-          pcout << "    contact: sparsity pattern rebuilt (sliding)"
-                << std::endl;
-          linear_solver.clear(); // it refers to the old matrix
-          elasticity.setup_system(contact.owned_multipliers(),
-                                  [&](DynamicSparsityPattern &dsp) {
-                                    contact.add_sparsity(dsp);
-                                  });
-          jacobian.reinit(elasticity.matrix_pattern());
+          // The monitor sees each Newton iterate once; a node that keeps
+          // switching ends the solve early (it would not converge).
+          monitor.record(contact.status(u));
+          const std::string cycling = monitor.cycling(comm);
+          if (!cycling.empty())
+            throw std::runtime_error(
+              "active-set cycling: slave node(s) at " + cycling +
+              " switched between open and closed more than " +
+              std::to_string(ActiveSetMonitor<dim>::maximum_switches) +
+              " times in this load step");
+          if (contact.needs_new_pattern(u))
+            rebuild_pattern(); // a slave node slid out of the pattern
         }
       elasticity.jacobian(u, jacobian);
       if (contact.active())
@@ -162,105 +207,199 @@ namespace glide
       TimerOutput::Scope s(timer, "linear solver: setup");
       linear_solver.initialize(jacobian, modes);
     };
-    callbacks.solve_jacobian = [&](const VectorType &rhs, VectorType &dx) {
+    callbacks.solve_jacobian = [this](const VectorType &rhs, VectorType &dx) {
       TimerOutput::Scope s(timer, "linear solver: solve");
       const unsigned int n =
         linear_solver.solve(rhs, dx, scene.linear_solver.relative_tolerance);
       elasticity.update_constraints().distribute(dx);
       return n;
     };
-    callbacks.report = [&](const unsigned int k, const double r) {
+    callbacks.report = [this](const unsigned int k, const double r) {
       pcout << "    iteration " << std::setw(2) << k << ": scaled residual "
             << scientific(r) << std::endl;
     };
-    NonlinearSolver           newton(scene.nonlinear_solver, comm);
-    NonlinearSolverParameters damped_parameters = scene.nonlinear_solver;
-    damped_parameters.strategy                  = "line search";
-    NonlinearSolver damped(damped_parameters, comm);
-    // KINSOL's scalings: force rows and contact rows by 1/(E_max A_ref),
-    // displacements by 1/L, contact forces by 1/(E_max A_ref).
-    VectorType residual_scale(owned, comm), solution_scale(owned, comm);
-    residual_scale = elasticity.residual_scale();
-    solution_scale = 1. / elasticity.length_scale();
-    contact.set_scaling(residual_scale,
-                        solution_scale,
-                        elasticity.residual_scale());
+  }
 
-    // Tangent predictor ('Load stepping/Predictor'), for steps that change
-    // prescribed displacements: one linear solve with the Jacobian at the
-    // converged state U0 carries their increment (in U_trial) and that of
-    // the loads into the whole body, instead of KINSOL's first iteration
-    // from U_trial, where the elements next to the prescribed nodes are
-    // distorted (or inverted). Without a displacement increment, KINSOL's
-    // first iteration from U_trial = U0 is that very solve: nothing to do.
-    const auto tangent_predictor =
-      [&](const VectorType &U0, const double t_new, VectorType &U_trial) {
-        VectorType D = U_trial;
-        D -= U0;
-        if (D.linfty_norm() == 0.)
-          return;
-        try
+  template <int dim>
+  void
+  Problem<dim>::predict(const VectorType &U0,
+                        const double      t_new,
+                        VectorType       &U_trial)
+  {
+    // For steps that change prescribed displacements: one linear solve
+    // with the Jacobian at the converged state U0 carries their increment
+    // (in U_trial) and that of the loads into the whole body, instead of
+    // KINSOL's first iteration from U_trial, where the elements next to the
+    // prescribed nodes are distorted (or inverted). Without a displacement
+    // increment, KINSOL's first iteration from U_trial = U0 is that very
+    // solve: nothing to do.
+    const auto &owned = elasticity.locally_owned();
+    VectorType  D     = U_trial;
+    D -= U0;
+    if (D.linfty_norm() == 0.)
+      return;
+    try
+      {
+        callbacks.setup_jacobian(U0);
+        VectorType F(owned, comm);
+        elasticity.predictor_residual(U0, D, t_new, F);
+        if (contact.active())
           {
-            callbacks.setup_jacobian(U0);
-            VectorType F(owned, comm);
-            elasticity.predictor_residual(U0, D, t_new, F);
-            if (contact.active())
-              {
-                TimerOutput::Scope s(timer, "contact: residual");
-                contact.assemble(U0, &F, nullptr);
-              }
-            F *= -1.;
-            VectorType W(owned, comm);
-            callbacks.solve_jacobian(F, W);
-            W += U0;
-            elasticity.constraints_at(t_new).distribute(W);
-            // Keep the prediction only where it starts KINSOL closer to
-            // equilibrium than U_trial does (KINSOL's scaled max-norm): at
-            // the contact states where the projection changes piece (a
-            // faceted master) the linearization at U0 can throw the
-            // prediction far off, into inverted elements, for any load
-            // increment however small.
-            const auto scaled_norm = [&](const VectorType &u) {
-              try
-                {
-                  VectorType R(owned, comm);
-                  callbacks.residual(u, R);
-                  R.scale(residual_scale);
-                  const double norm = R.linfty_norm();
-                  return std::isfinite(norm) ?
-                           norm :
-                           std::numeric_limits<double>::infinity();
-                }
-              catch (const InputError &)
-                {
-                  throw;
-                }
-              catch (const std::exception &)
-                {
-                  // An inverted element.
-                  return std::numeric_limits<double>::infinity();
-                }
-            };
-            const double predicted = scaled_norm(W);
-            if (predicted < std::numeric_limits<double>::infinity() &&
-                predicted <= scaled_norm(U_trial))
-              U_trial = W;
-            else
-              pcout << "  predictor not used (its residual is larger than "
-                       "that of the last converged state with the new "
-                       "prescribed values, or it inverts an element)"
-                    << std::endl;
+            TimerOutput::Scope s(timer, "contact: residual");
+            contact.assemble(U0, &F, nullptr);
           }
-        catch (const InputError &)
+        F *= -1.;
+        VectorType W(owned, comm);
+        callbacks.solve_jacobian(F, W);
+        W += U0;
+        elasticity.constraints_at(t_new).distribute(W);
+        // Keep the prediction only where it starts KINSOL closer to
+        // equilibrium than U_trial does (KINSOL's scaled max-norm): at
+        // the contact states where the projection changes piece (a
+        // faceted master) the linearization at U0 can throw the
+        // prediction far off, into inverted elements, for any load
+        // increment however small.
+        const auto scaled_norm = [&](const VectorType &u) {
+          try
+            {
+              VectorType R(owned, comm);
+              callbacks.residual(u, R);
+              R.scale(residual_scale);
+              const double norm = R.linfty_norm();
+              return std::isfinite(norm) ?
+                       norm :
+                       std::numeric_limits<double>::infinity();
+            }
+          catch (const InputError &)
+            {
+              throw;
+            }
+          catch (const std::exception &)
+            {
+              // An inverted element.
+              return std::numeric_limits<double>::infinity();
+            }
+        };
+        const double predicted = scaled_norm(W);
+        if (predicted < std::numeric_limits<double>::infinity() &&
+            predicted <= scaled_norm(U_trial))
+          U_trial = W;
+        else
+          pcout << "  predictor not used (its residual is larger than "
+                   "that of the last converged state with the new "
+                   "prescribed values, or it inverts an element)"
+                << std::endl;
+      }
+    catch (const InputError &)
+      {
+        throw;
+      }
+    catch (const std::exception &e)
+      {
+        pcout << "  predictor failed (" << e.what()
+              << "); starting from the last converged state" << std::endl;
+      }
+  }
+
+  template <int dim>
+  NonlinearSolver::Result
+  Problem<dim>::solve_step(VectorType &U_trial)
+  {
+    const VectorType U_start = U_trial;
+    monitor.reset();
+    auto result =
+      newton->solve(U_trial, callbacks, residual_scale, solution_scale);
+    if (!result.converged && scene.nonlinear_solver.retry_with_line_search)
+      {
+        pcout << "  step failed with full Newton steps: " << result.message
+              << "\n  retrying with line search" << std::endl;
+        // Nodes whose projection alternated between two facets of a
+        // faceted master are held on one of them in the retry: a change of
+        // the problem, made between solves, reported in the log and the
+        // statistics (contact_<pair>_held).
+        const auto holds = monitor.holds();
+        const auto n_holds =
+          Utilities::MPI::sum(static_cast<unsigned int>(holds.size()), comm);
+        if (n_holds > 0)
           {
-            throw;
+            contact.hold(holds);
+            pcout << "  holding " << n_holds
+                  << " slave node(s) on one master facet in the retry (their "
+                     "projection alternated between facets meeting at a "
+                     "corner)"
+                  << std::endl;
           }
-        catch (const std::exception &e)
-          {
-            pcout << "  predictor failed (" << e.what()
-                  << "); starting from the last converged state" << std::endl;
-          }
-      };
+        U_trial = U_start;
+        monitor.reset();
+        const auto first = result;
+        result =
+          damped->solve(U_trial, callbacks, residual_scale, solution_scale);
+        // Both attempts count.
+        result.iterations += first.iterations;
+        result.linear_iterations += first.linear_iterations;
+      }
+    return result;
+  }
+
+  template <int dim>
+  void
+  Problem<dim>::postprocess(const unsigned int             step,
+                            const double                   t_old,
+                            const NonlinearSolver::Result &result,
+                            const unsigned int             cut_backs,
+                            const double                   wall_time)
+  {
+    std::vector<std::pair<std::string, std::string>> row{
+      {"step", std::to_string(step)},
+      {"load_factor", format_number(t)},
+      {"kinsol_iterations", std::to_string(result.iterations)},
+      {"linear_iterations", std::to_string(result.linear_iterations)},
+      {"residual", format_number(result.residual_norm)},
+      {"cut_backs", std::to_string(cut_backs)},
+      {"wall_time", format_number(wall_time)},
+      {"dofs", std::to_string(elasticity.get_dof_handler().n_dofs())}};
+    {
+      TimerOutput::Scope s(timer, "postprocessing");
+      const char        *axis[] = {"x", "y", "z"};
+      for (const auto &[surface, force] : elasticity.reactions(U, t))
+        for (unsigned int d = 0; d < dim; ++d)
+          row.emplace_back("reaction_" + surface + "_" + axis[d],
+                           format_number(force[d]));
+      if (contact.active())
+        {
+          contact.update_slip(U, t_old, t);
+          for (const auto &m : contact.take_messages())
+            pcout << "  " << m << std::endl;
+        }
+      for (const auto &column : contact.statistics(U))
+        row.push_back(column);
+      if (contact.active())
+        contact.write_nodes(U, directory, step, t, scene.output.write_vtu);
+      if (scene.manufactured_solution != "none")
+        {
+          const auto [l2, h1] = elasticity.errors(U);
+          row.emplace_back("l2_error", format_number(l2));
+          row.emplace_back("h1_error", format_number(h1));
+        }
+    }
+    statistics->add_row(row);
+    if (scene.output.write_vtu && (step % scene.output.every == 0 || t >= 1.))
+      {
+        TimerOutput::Scope s(timer, "output");
+        vtu->write(step, t, U);
+      }
+  }
+
+  template <int dim>
+  void
+  Problem<dim>::run()
+  {
+    Timer wall(comm);
+    setup();
+    print_summary();
+    for (const auto &m : contact.take_messages())
+      pcout << "  " << m << std::endl;
+    prepare_output();
 
     const double nominal = 1. / scene.load_stepping.number_of_steps;
     double       dt      = nominal;
@@ -276,29 +415,14 @@ namespace glide
         VectorType U_trial = U;
         elasticity.constraints_at(t).distribute(U_trial);
         contact.set_time(t);
+        contact.release_holds();
         pcout << "Step " << step + 1 << ": load factor " << t << " (increment "
               << t - t_old << ")" << std::endl;
         Timer step_timer(comm);
-        contact.begin_solve(); // the predictor's residual counts no switches
+        monitor.reset();
         if (scene.load_stepping.tangent_predictor)
-          tangent_predictor(U, t, U_trial);
-        contact.begin_solve();
-        const VectorType U_start = U_trial;
-        auto             result =
-          newton.solve(U_trial, callbacks, residual_scale, solution_scale);
-        if (!result.converged && scene.nonlinear_solver.retry_with_line_search)
-          {
-            pcout << "  step failed with full Newton steps: " << result.message
-                  << "\n  retrying with line search" << std::endl;
-            U_trial = U_start;
-            contact.begin_solve();
-            const auto first = result;
-            result =
-              damped.solve(U_trial, callbacks, residual_scale, solution_scale);
-            // Both attempts count.
-            result.iterations += first.iterations;
-            result.linear_iterations += first.linear_iterations;
-          }
+          predict(U, t, U_trial);
+        const auto result = solve_step(U_trial);
         if (!result.converged)
           {
             pcout << "  step failed: " << result.message << std::endl;
@@ -322,65 +446,32 @@ namespace glide
         pcout << "  converged in " << result.iterations
               << " iteration(s), scaled residual "
               << scientific(result.residual_norm) << std::endl;
-
-        std::vector<std::pair<std::string, std::string>> row{
-          {"step", std::to_string(step)},
-          {"load_factor", format_number(t)},
-          {"kinsol_iterations", std::to_string(result.iterations)},
-          {"linear_iterations", std::to_string(result.linear_iterations)},
-          {"residual", format_number(result.residual_norm)},
-          {"cut_backs", std::to_string(cut_backs)},
-          {"wall_time", format_number(step_timer.wall_time())},
-          {"dofs", std::to_string(dof_handler.n_dofs())}};
-        {
-          TimerOutput::Scope s(timer, "postprocessing");
-          const char        *axis[] = {"x", "y", "z"};
-          for (const auto &[surface, force] : elasticity.reactions(U, t))
-            for (unsigned int d = 0; d < dim; ++d)
-              row.emplace_back("reaction_" + surface + "_" + axis[d],
-                               format_number(force[d]));
-          if (contact.active())
-            {
-              contact.update_slip(U, t_old, t);
-              for (const auto &m : contact.take_messages())
-                pcout << "  " << m << std::endl;
-            }
-          for (const auto &column : contact.statistics(U))
-            row.push_back(column);
-          if (contact.active())
-            contact.write_nodes(U, directory, step, t, scene.output.write_vtu);
-          if (scene.manufactured_solution != "none")
-            {
-              const auto [l2, h1] = elasticity.errors(U);
-              row.emplace_back("l2_error", format_number(l2));
-              row.emplace_back("h1_error", format_number(h1));
-            }
-        }
-        statistics.add_row(row);
-        if (scene.output.write_vtu &&
-            (step % scene.output.every == 0 || t >= 1.))
-          {
-            TimerOutput::Scope s(timer, "output");
-            vtu.write(step, t, U);
-          }
+        postprocess(step, t_old, result, cut_backs, step_timer.wall_time());
         // After a cut-back, grow the increment again towards the nominal one.
         dt = std::min(nominal, 2 * dt);
       }
+    finish(step, cut_backs, wall.wall_time());
+  }
 
+  template <int dim>
+  void
+  Problem<dim>::finish(const unsigned int steps,
+                       const unsigned int cut_backs,
+                       const double       wall_time)
+  {
     timer.print_summary();
     const double memory = peak_memory_mib(comm);
-    pcout << "Finished " << step << " load step(s) with " << cut_backs
+    pcout << "Finished " << steps << " load step(s) with " << cut_backs
           << " cut-back(s) in " << std::fixed << std::setprecision(2)
-          << wall.wall_time() << " s; peak memory " << memory << " MiB"
-          << std::endl;
+          << wall_time << " s; peak memory " << memory << " MiB" << std::endl;
     if (Utilities::MPI::this_mpi_process(comm) == 0)
       {
         std::ofstream out(directory + "/timings.csv");
         out << "quantity,value\n"
-            << "dofs," << dof_handler.n_dofs() << "\n"
+            << "dofs," << elasticity.get_dof_handler().n_dofs() << "\n"
             << "processes," << Utilities::MPI::n_mpi_processes(comm) << "\n"
             << "linear_solver," << linear_solver.description() << "\n"
-            << "total_wall_time," << wall.wall_time() << "\n"
+            << "total_wall_time," << wall_time << "\n"
             << "peak_memory_mib," << memory << "\n"
             << "contact_search_time," << contact.search_time() << "\n";
         for (const auto &[section, time] :
@@ -410,7 +501,7 @@ namespace glide
                         TimerOutput::wall_times);
       try
         {
-          run_scene_with<dim>(scene, comm, pcout, timer);
+          Problem<dim>(scene, comm, pcout, timer).run();
         }
       catch (...)
         {
@@ -425,4 +516,6 @@ namespace glide
   run_scene<2>(const Scene &, MPI_Comm);
   template void
   run_scene<3>(const Scene &, MPI_Comm);
+  template class Problem<2>;
+  template class Problem<3>;
 } // namespace glide

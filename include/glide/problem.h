@@ -1,8 +1,22 @@
 #pragma once
 
+#include <glide/contact/active_set_monitor.h>
+#include <glide/contact/contact.h>
+#include <glide/mechanics/elasticity.h>
+#include <glide/output/statistics.h>
+#include <glide/output/vtu_writer.h>
 #include <glide/scene/scene.h>
+#include <glide/solver/linear_solver.h>
+#include <glide/solver/nonlinear_solver.h>
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/timer.h>
 
 #include <mpi.h>
+
+#include <memory>
+#include <string>
+#include <vector>
 
 namespace glide
 {
@@ -17,4 +31,88 @@ namespace glide
   template <int dim>
   void
   run_scene(const Scene &scene, MPI_Comm comm);
+
+  /**
+   * The problem of one scene and its load stepper: the bodies, the contact
+   * pairs, the nonlinear and linear solvers and the output, with one
+   * function per stage of the run. The residual KINSOL sees is a function
+   * of the iterate and of what the stepper fixes between solves (the load
+   * factor, the contact holds), never of the history of a solve (R16.1).
+   */
+  template <int dim>
+  class Problem
+  {
+  public:
+    Problem(const Scene                &scene,
+            MPI_Comm                    comm,
+            dealii::ConditionalOStream &pcout,
+            dealii::TimerOutput        &timer);
+
+    /// Every load step to the end (or an exception).
+    void
+    run();
+
+  private:
+    /// Bodies, contact pairs, the system's layout, the solvers' choice.
+    void
+    setup();
+    /// The scene summary at the top of the log.
+    void
+    print_summary() const;
+    /// The output directory (cleared of this scene's earlier results), the
+    /// statistics table and the VTU writer; only after every input check.
+    void
+    prepare_output();
+    /// The callbacks through which KINSOL sees the problem.
+    void
+    setup_callbacks();
+    /// Rebuild the sparsity pattern and the Jacobian (sliding contact).
+    void
+    rebuild_pattern();
+    /// Tangent predictor ('Load stepping/Predictor'): one linear solve from
+    /// the converged state @p U0 carries the increment of the prescribed
+    /// values in @p U_trial into the bodies; kept only where it lowers the
+    /// scaled residual.
+    void
+    predict(const VectorType &U0, const double t_new, VectorType &U_trial);
+    /// Solve one load step from @p U_trial: full Newton steps, then, if
+    /// that fails, once more with line search, holding the contact nodes
+    /// that alternated between two facets in the first attempt.
+    NonlinearSolver::Result
+    solve_step(VectorType &U_trial);
+    /// Statistics row, contact output and VTU of converged step @p step.
+    void
+    postprocess(const unsigned int             step,
+                const double                   t_old,
+                const NonlinearSolver::Result &result,
+                const unsigned int             cut_backs,
+                const double                   wall_time);
+    /// timings.csv and the closing line of the log.
+    void
+    finish(const unsigned int steps,
+           const unsigned int cut_backs,
+           const double       wall_time);
+
+    const Scene                &scene;
+    MPI_Comm                    comm;
+    dealii::ConditionalOStream &pcout;
+    dealii::TimerOutput        &timer;
+
+    Elasticity<dim> elasticity;
+    Contact<dim>    contact;
+    /// The Jacobian outlives the linear solver: Amesos keeps a pointer.
+    MatrixType                       jacobian;
+    LinearSolver                     linear_solver;
+    std::vector<VectorType>          modes;
+    NonlinearSolver::Callbacks       callbacks;
+    std::unique_ptr<NonlinearSolver> newton, damped;
+    VectorType                       residual_scale, solution_scale;
+    ActiveSetMonitor<dim>            monitor;
+    std::string                      directory;
+    std::unique_ptr<Statistics>      statistics;
+    std::unique_ptr<VtuWriter<dim>>  vtu;
+    VectorType                       U;
+    /// Load factor of the step being solved.
+    double t = 0.;
+  };
 } // namespace glide

@@ -10,6 +10,7 @@
 #include <deal.II/lac/full_matrix.h>
 
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -118,6 +119,20 @@ namespace glide
                       name + "' belongs to the rigid body '" + body.name +
                       "'; a rigid body can only be the master (swap Slave "
                       "and Master).");
+        // The contact modulus E_pair: the softer of the two sides sets
+        // the contact stiffness, and so the scale of c, of the penalty
+        // stiffness and of the contact rows (with E_max instead, a soft
+        // body pressed by a body 1e6 times stiffer got c 1e6 times its
+        // own stiffness, and its open/closed decisions followed the gap
+        // alone).
+        double slave_modulus  = std::numeric_limits<double>::infinity();
+        double master_modulus = std::numeric_limits<double>::infinity();
+        if (p.master_type == MasterType::surface)
+          for (const auto &name : Utilities::split_string_list(p.master, ','))
+            for (unsigned int b = 0; b < scene.bodies.size(); ++b)
+              if (name.rfind(scene.bodies[b].name + ".", 0) == 0)
+                master_modulus = std::min(master_modulus,
+                                          elasticity.youngs_modulus_of_body(b));
         std::map<types::global_dof_index, SlaveNode>    found;
         std::map<types::global_dof_index, unsigned int> n_facets;
         const bool                                      node_based =
@@ -145,6 +160,9 @@ namespace glide
                     const auto it = found.find(cell->vertex_dof_index(v, 0));
                     if (it == found.end())
                       continue;
+                    slave_modulus = std::min(slave_modulus,
+                                             elasticity.youngs_modulus_of_body(
+                                               cell->material_id()));
                     it->second.size += cell->diameter();
                     ++n_facets[it->first];
                   }
@@ -173,6 +191,9 @@ namespace glide
                       continue;
                     cell->get_dof_indices(cell_dofs);
                     face_values.reinit(cell, f);
+                    slave_modulus = std::min(slave_modulus,
+                                             elasticity.youngs_modulus_of_body(
+                                               cell->material_id()));
                     // Nodes of this face: base index -> cell DoFs per
                     // component.
                     const auto nodes = face_node_indices<dim>(fe, cell, f);
@@ -214,18 +235,22 @@ namespace glide
                   }
               }
           }
+        slave_modulus = Utilities::MPI::min(slave_modulus, comm);
+        pair.modulus  = std::min(slave_modulus, master_modulus);
+        if (!std::isfinite(pair.modulus))
+          pair.modulus = max_youngs_modulus;
         for (auto &[dof, node] : found)
           if (owned.is_element(dof))
             {
               node.size /= n_facets[dof];
               // A node-based slave scales c with its size^(dim-1), not with
               // its nominal area 1, so that iterations stay unit-free.
-              node.c = max_youngs_modulus *
+              node.c = pair.modulus *
                        (node_based ? std::pow(node.size, dim - 1) : node.area) /
                        node.size;
               const double stiffness = p.penalty_stiffness > 0 ?
                                          p.penalty_stiffness :
-                                         1000. * max_youngs_modulus / node.size;
+                                         1000. * pair.modulus / node.size;
               node.k                 = stiffness * node.area;
               pair.nodes.push_back(node);
             }
@@ -286,7 +311,7 @@ namespace glide
       if (pair.parameters->enforcement == Enforcement::hard)
         for (auto &node : pair.nodes)
           node.multiplier = next++;
-    begin_solve();
+    release_holds();
   }
 
   template <int dim>
@@ -405,17 +430,55 @@ namespace glide
   }
 
   template <int dim>
+  std::vector<typename ActiveSetMonitor<dim>::Status>
+  Contact<dim>::status(const VectorType &U) const
+  {
+    std::vector<typename ActiveSetMonitor<dim>::Status> result;
+    move_surfaces(U);
+    for (const auto &pair : pairs)
+      for (const auto &node : pair.nodes)
+        {
+          const NodeState                        s = state(pair, node, U);
+          typename ActiveSetMonitor<dim>::Status status;
+          status.closed = s.closed;
+          status.X      = node.X;
+          if (pair.surface && !pair.small && s.found)
+            {
+              status.piece    = s.projection.piece;
+              status.holdable = pair.parameters->smoothing == 0.;
+            }
+          result.push_back(status);
+        }
+    return result;
+  }
+
+  template <int dim>
   void
-  Contact<dim>::begin_solve()
+  Contact<dim>::hold(const std::vector<std::pair<unsigned int, int>> &holds)
+  {
+    for (const auto &[k, piece] : holds)
+      {
+        unsigned int first = 0;
+        for (auto &pair : pairs)
+          {
+            if (k < first + pair.nodes.size())
+              {
+                if (pair.held_piece.size() != pair.nodes.size())
+                  pair.held_piece.assign(pair.nodes.size(), -1);
+                pair.held_piece[k - first] = piece;
+                break;
+              }
+            first += pair.nodes.size();
+          }
+      }
+  }
+
+  template <int dim>
+  void
+  Contact<dim>::release_holds()
   {
     for (auto &pair : pairs)
-      {
-        pair.last_closed.assign(pair.nodes.size(), -1);
-        pair.switches.assign(pair.nodes.size(), 0);
-        pair.last_pieces.assign(pair.nodes.size(), {{-1, -1}});
-        pair.returns.assign(pair.nodes.size(), 0);
-        pair.held_piece.assign(pair.nodes.size(), -1);
-      }
+      pair.held_piece.assign(pair.nodes.size(), -1);
   }
 
   template <int dim>
@@ -617,7 +680,6 @@ namespace glide
                          MatrixType       *J) const
   {
     const auto &constraints = elasticity.update_constraints();
-    std::string cycling; // nodes that switch too often, for the message
     std::string failure; // a projection that failed on this process
     move_surfaces(U);
     typename MasterSurface<dim>::Linearization l;
@@ -643,43 +705,6 @@ namespace glide
                 // Finish the loop so that every process reaches compress().
                 failure = e.what();
                 continue;
-              }
-            if (J)
-              {
-                // Active-set cycling: count the switches of each node
-                // between Jacobian set-ups (one per Newton iteration; line
-                // search trials and convergence checks do not count).
-                if (pair.last_closed[i] >= 0 &&
-                    pair.last_closed[i] != (s.closed ? 1 : 0))
-                  ++pair.switches[i];
-                pair.last_closed[i] = s.closed ? 1 : 0;
-                // A node whose projection keeps going back to the piece it
-                // left (A, B, A, B) is held on its piece for the rest of the
-                // solve: its gap is then measured to that facet's plane.
-                // Faceted masters only: a smoothed master has no corners
-                // (holding a node on one piece of a smoothed surface while
-                // the ironing die slid on made the run fail).
-                if (pair.surface && !pair.small && s.found && s.closed &&
-                    pair.parameters->smoothing == 0. && pair.held_piece[i] < 0)
-                  {
-                    auto     &last  = pair.last_pieces[i];
-                    const int piece = s.projection.piece;
-                    if (piece != last[1])
-                      {
-                        if (piece == last[0] &&
-                            ++pair.returns[i] >= maximum_returns)
-                          {
-                            pair.held_piece[i] = piece;
-                          }
-                        last = {{last[1], piece}};
-                      }
-                  }
-                if (pair.switches[i] > maximum_switches && cycling.size() < 400)
-                  {
-                    std::ostringstream x;
-                    x << "(" << node.X << ")";
-                    cycling += (cycling.empty() ? "" : ", ") + x.str();
-                  }
               }
             if (!s.found)
               {
@@ -736,6 +761,14 @@ namespace glide
                   for (unsigned int a = 0; a < m; ++a)
                     for (unsigned int b = 0; b < m; ++b)
                       K(a, b) += node.k * column(a) * row(b);
+                // Jacobian stabilization of open slave nodes near the
+                // master (the residual is untouched, so the solution is
+                // too): see stabilization_weight().
+                const double w = stabilization_weight(node, s);
+                if (J && w > 0.)
+                  for (unsigned int a = 0; a < m; ++a)
+                    for (unsigned int b = 0; b < m; ++b)
+                      K(a, b) += w * row(a) * row(b);
               }
             if (F && J)
               constraints.distribute_local_to_global(K, rhs, idx, *J, *F);
@@ -750,32 +783,35 @@ namespace glide
     if (J)
       J->compress(VectorOperation::add);
     throw_on_any_process(failure, comm);
-    if (Utilities::MPI::max(static_cast<unsigned int>(cycling.size()), comm) >
-        0)
-      {
-        const auto  all = Utilities::MPI::gather(comm, cycling, 0);
-        std::string nodes;
-        for (const auto &c : all)
-          if (!c.empty())
-            nodes += (nodes.empty() ? "" : ", ") + c;
-        throw std::runtime_error(
-          "active-set cycling: slave node(s) at " + nodes +
-          " switched between open and closed more than " +
-          std::to_string(maximum_switches) + " times in this load step");
-      }
+  }
+
+  template <int dim>
+  double
+  Contact<dim>::stabilization_weight(const SlaveNode &node,
+                                     const NodeState &s) const
+  {
+    if (!stabilize || s.closed || !s.found || !(s.gap >= 0.) ||
+        s.gap >= node.size)
+      return 0.;
+    const double w = 1. - s.gap / node.size;
+    return stabilization * node.c * w * w;
   }
 
   template <int dim>
   void
-  Contact<dim>::set_scaling(VectorType  &residual_scale,
-                            VectorType  &solution_scale,
-                            const double scale) const
+  Contact<dim>::set_scaling(VectorType &residual_scale,
+                            VectorType &solution_scale) const
   {
-    for (const auto i : multipliers)
-      {
-        residual_scale[i] = scale;
-        solution_scale[i] = scale;
-      }
+    // 1 / (E_max A_ref) times E_max / E_pair.
+    for (const auto &pair : pairs)
+      for (const auto &node : pair.nodes)
+        if (node.multiplier != numbers::invalid_dof_index)
+          {
+            const double scale =
+              elasticity.residual_scale() * max_youngs_modulus / pair.modulus;
+            residual_scale[node.multiplier] = scale;
+            solution_scale[node.multiplier] = scale;
+          }
     residual_scale.compress(VectorOperation::insert);
     solution_scale.compress(VectorOperation::insert);
   }
@@ -788,7 +824,12 @@ namespace glide
     const char                                      *axis[] = {"x", "y", "z"};
     for (const auto &pair : pairs)
       {
-        unsigned int   active       = 0;
+        // R16.3: what the contact computation could not do at this state,
+        // counted per step: projections that failed to converge, nodes
+        // beyond the end of the master (open by definition), nodes without
+        // an anchor (small sliding), nodes held on one facet.
+        unsigned int active = 0, failed = 0, beyond = 0, unanchored = 0,
+                     held           = 0;
         double         normal_force = 0, penetration = 0;
         Tensor<1, dim> force;
         if (pair.surface)
@@ -797,6 +838,13 @@ namespace glide
           {
             const NodeState s = state(pair, node, U);
             active += s.closed ? 1 : 0;
+            if (pair.small)
+              unanchored += s.found ? 0 : 1;
+            else if (pair.surface && !s.found)
+              {
+                failed += s.projection.failed ? 1 : 0;
+                beyond += s.projection.failed ? 0 : 1;
+              }
             normal_force += s.lambda;
             force += s.lambda * s.normal;
             if (s.found)
@@ -818,6 +866,24 @@ namespace glide
                          format_number(Utilities::MPI::max(max_slip, comm)));
         row.emplace_back(p + "max_penetration",
                          format_number(Utilities::MPI::max(penetration, comm)));
+        for (const int i : pair.held_piece)
+          held += i >= 0 ? 1 : 0;
+        // Surface-to-surface constraints that fell back to node to surface
+        // (R9.4; fixed at set-up, counted with every step).
+        unsigned int fallbacks = 0;
+        if (pair.small && pair.parameters->formulation == "surface to surface")
+          for (const auto &a : pair.anchors)
+            fallbacks += (a.found && !a.sts) ? 1 : 0;
+        row.emplace_back(p + "projection_failed",
+                         std::to_string(Utilities::MPI::sum(failed, comm)));
+        row.emplace_back(p + "beyond_end",
+                         std::to_string(Utilities::MPI::sum(beyond, comm)));
+        row.emplace_back(p + "unanchored",
+                         std::to_string(Utilities::MPI::sum(unanchored, comm)));
+        row.emplace_back(p + "held",
+                         std::to_string(Utilities::MPI::sum(held, comm)));
+        row.emplace_back(p + "fallbacks",
+                         std::to_string(Utilities::MPI::sum(fallbacks, comm)));
       }
     return row;
   }
@@ -831,6 +897,27 @@ namespace glide
     move_surfaces(U);
     for (const auto &pair : pairs)
       {
+        // R16.3: slave nodes whose closest-point projection failed to
+        // converge are open at this state; name them.
+        if (pair.surface && !pair.small)
+          {
+            std::vector<std::string> failed;
+            for (const auto &node : pair.nodes)
+              {
+                const NodeState s = state(pair, node, U);
+                if (!s.found && s.projection.failed)
+                  {
+                    std::ostringstream text;
+                    text << "(" << node.X << ")";
+                    failed.push_back(text.str());
+                  }
+              }
+            report(failed,
+                   "warning: contact pair '" + pair.parameters->name +
+                     "': the projection onto the master did not converge for ",
+                   " slave node(s), which count as open in this step (node "
+                   "positions in the reference configuration)");
+          }
         // How far the held gaps are from those of the free projection, and
         // the held nodes from the end of their piece.
         std::vector<std::string> held;

@@ -348,6 +348,51 @@ namespace glide
     std::array<double, 3> N1, dN1, N2, dN2;
     lagrange(p, 1. - f, N1.data(), dN1.data());
     lagrange(p, f, N2.data(), dN2.data());
+
+    // R1.2 for quadratic facets: the fraction of the transition at the
+    // node between facet i and the next one. A Hermite transition on two
+    // quadratic facets that meet without a kink (a straight run, or an arc)
+    // is the same curve, but it passes load to the facets' corner and
+    // mid-side nodes in other proportions than the facets do (at its
+    // middle, the vertex, 0.70 / 0.20 / -0.05 instead of 1 / 0 / 0): with
+    // f = 0.2 a uniform pressure loads the corners of a flat quadratic
+    // master with 0.28 pL instead of pL / 3 (the error grows as 4 f^2), the
+    // master ripples, and the nodal pressures alternated by +21 % / -10 %
+    // between slave corners and mid-sides without converging. So where the
+    // facets' reference tangents turn at the node by no more than 5 % of
+    // the larger turn within either facet (not a polygon vertex, but the
+    // O(h^3) kink of a curve interpolated by quadratics), the transition
+    // spans only quadratic_fraction of each facet: the load is then passed
+    // within 4 f^2 = 0.2 % of the facets' proportions, and the surface stays
+    // C1 where the deforming master kinks there (without any transition
+    // the force direction jumps at the node, and Newton alternates between
+    // the two facets). Linear facets use f at every node: their transition
+    // passes load like the facets do.
+    const auto tangent = [&](const Facet &facet, const double t) {
+      std::array<double, 3> N, dN;
+      lagrange(p, t, N.data(), dN.data());
+      Tensor<1, dim> d;
+      for (unsigned int k = 0; k < facet.nodes.size(); ++k)
+        d += dN[k] * nodes[facet.nodes[k]].X;
+      return d;
+    };
+    const auto angle = [](const Tensor<1, dim> &a, const Tensor<1, dim> &b) {
+      const double cross = a[0] * b[dim - 1] - a[dim - 1] * b[0];
+      return std::abs(std::atan2(cross, a * b));
+    };
+    const auto junction_fraction = [&](const unsigned int i,
+                                       const unsigned int next) {
+      if (p == 1)
+        return f;
+      const double kink =
+        angle(tangent(facets[i], 1.), tangent(facets[next], 0.));
+      const double turn =
+        std::max(angle(tangent(facets[i], 0.), tangent(facets[i], 1.)),
+                 angle(tangent(facets[next], 0.), tangent(facets[next], 1.)));
+      return kink > std::max(1e-8, 0.05 * turn) ?
+               f :
+               std::min(f, quadratic_fraction);
+    };
     // A transition curve of facet i (mirrored about the plane x_a through
     // node `plane` if a >= 0), and one of its two ends: the Hermite data
     // (position at parameter s, tangent 2 f x'(s) times `sign`) of the
@@ -367,11 +412,13 @@ namespace glide
                        const bool                       at_start,
                        const std::array<double, 3>     &N,
                        const std::array<double, 3>     &dN,
-                       const double                     sign) {
+                       const double                     sign,
+                       const double                     fraction = -1.) {
+      const double ft = fraction >= 0. ? fraction : f;
       for (unsigned int k = 0; k <= p; ++k)
         {
           t.vnodes.emplace_back(facet_nodes[k], mirrored);
-          const double m = sign * 2. * f * dN[k];
+          const double m = sign * 2. * ft * dN[k];
           t.coefficients.push_back(at_start ?
                                      std::array<double, 4>{{N[k], m, 0., 0.}} :
                                      std::array<double, 4>{{0., 0., N[k], m}});
@@ -390,7 +437,7 @@ namespace glide
         // Start of the facet.
         const unsigned int start = facet.nodes.front();
         if (facet.neighbours[0] >= 0)
-          piece.begin = f;
+          piece.begin = junction_fraction(facet.neighbours[0], i);
         else if (const int a = mirror_axis(start); a >= 0)
           {
             // Mirror image of this facet across the plane x_a = const
@@ -412,12 +459,16 @@ namespace glide
         if (facet.neighbours[1] >= 0)
           {
             const unsigned int next = facet.neighbours[1];
-            if (f > 0)
+            const double       fj   = junction_fraction(i, next);
+            if (fj > 0)
               {
-                piece.end = 1. - f;
+                std::array<double, 3> M1, dM1, M2, dM2;
+                lagrange(p, 1. - fj, M1.data(), dM1.data());
+                lagrange(p, fj, M2.data(), dM2.data());
+                piece.end = 1. - fj;
                 Piece t   = transition(i, 0, -1);
-                add_end(t, facet.nodes, false, true, N1, dN1, 1.);
-                add_end(t, facets[next].nodes, false, false, N2, dN2, 1.);
+                add_end(t, facet.nodes, false, true, M1, dM1, 1., fj);
+                add_end(t, facets[next].nodes, false, false, M2, dM2, 1., fj);
                 pieces.push_back(t);
               }
           }
@@ -897,7 +948,10 @@ namespace glide
         converged = change < 1e-10;
       }
     if (!converged)
-      return result;
+      {
+        result.failed = true;
+        return result;
+      }
     result.found      = true;
     result.xi         = xi;
     result.clamped    = fixed;
@@ -1009,11 +1063,13 @@ namespace glide
     // slave nodes that almost touch a faceted corner.
     std::vector<std::pair<Projection, bool>> clamped;
     double best_distance = std::numeric_limits<double>::max();
+    bool   any_failed    = false;
     for (const auto &[box_distance, i] : order)
       {
         if (best.found && box_distance > std::abs(best.gap))
           break;
         const Projection p = project_on(i, xs);
+        any_failed         = any_failed || p.failed;
         if (!p.found)
           continue;
         if (!p.vertex)
@@ -1055,7 +1111,10 @@ namespace glide
         }
     if (beyond_end)
       best_vertex.found = false;
-    return best.found ? best : best_vertex;
+    if (best.found)
+      return best;
+    best_vertex.failed = !best_vertex.found && any_failed;
+    return best_vertex;
   }
 
   template <int dim>

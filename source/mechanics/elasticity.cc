@@ -10,6 +10,8 @@
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <limits>
+#include <map>
 #include <sstream>
 
 namespace glide
@@ -333,6 +335,40 @@ namespace glide
             }
     reference_area =
       Utilities::MPI::sum(area, comm) / Utilities::MPI::sum(count, comm);
+  }
+
+  template <int dim>
+  double
+  Elasticity<dim>::youngs_modulus_of_body(const unsigned int b) const
+  {
+    AssertIndexRange(b, scene.bodies.size());
+    return scene.bodies[b].rigid ? std::numeric_limits<double>::infinity() :
+                                   scene.bodies[b].material.youngs_modulus;
+  }
+
+  template <int dim>
+  void
+  Elasticity<dim>::residual_scales(VectorType &scale) const
+  {
+    // A node shared by bodies of different moduli takes the largest.
+    std::map<types::global_dof_index, double> modulus;
+    std::vector<types::global_dof_index>      dofs(
+      dof_handler.get_fe().n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned() || cell->is_ghost())
+        {
+          const unsigned int b = cell->material_id();
+          const double       E = scene.bodies[b].rigid ?
+                                   max_youngs_modulus :
+                                   scene.bodies[b].material.youngs_modulus;
+          cell->get_dof_indices(dofs);
+          for (const auto i : dofs)
+            if (displacement_owned().is_element(i))
+              modulus[i] = std::max(modulus[i], E);
+        }
+    for (const auto &[i, E] : modulus)
+      scale[i] = 1. / (E * reference_area);
+    scale.compress(VectorOperation::insert);
   }
 
   template <int dim>

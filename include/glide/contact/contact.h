@@ -1,5 +1,6 @@
 #pragma once
 
+#include <glide/contact/active_set_monitor.h>
 #include <glide/contact/master_surface.h>
 #include <glide/contact/rigid_master.h>
 #include <glide/contact/small_sliding.h>
@@ -82,30 +83,48 @@ namespace glide
     bool
     needs_new_pattern(const VectorType &U);
 
-    /// Start a new nonlinear solve: forget the open/closed history used to
-    /// detect active-set cycling.
+    /// The state of every locally owned slave node (all pairs, in order)
+    /// at iterate @p U, for the driver's ActiveSetMonitor. Reads nothing
+    /// but U and the committed state.
+    std::vector<typename ActiveSetMonitor<dim>::Status>
+    status(const VectorType &U) const;
+
+    /// Hold the slave nodes @p holds (indices as in status(), with their
+    /// piece) on one facet of a faceted master for the next solves of this
+    /// step: their gap is measured to that facet's plane. Chosen by the
+    /// driver between two attempts at a step, never inside one, so that
+    /// the residual stays a function of the iterate within each solve.
     void
-    begin_solve();
+    hold(const std::vector<std::pair<unsigned int, int>> &holds);
+
+    /// End all holds (at the start of every step).
+    void
+    release_holds();
+
+    /// Turn the stabilization of stabilization_weight() on (the default)
+    /// or off (to compare the Jacobian with finite differences).
+    void
+    set_jacobian_stabilization(const bool on)
+    {
+      stabilize = on;
+    }
+
 
     /// Move rigid masters to load factor @p t.
     void
     set_time(const double t);
 
     /// Add the contact terms to F (and to J if given), condensed with the
-    /// displacement constraints. Each residual evaluation (F given) also
-    /// checks for active-set cycling: a slave node that switches between
-    /// open and closed more than `maximum_switches` times in one solve
-    /// makes the evaluation fail with a message that names the nodes, so
-    /// that the load step is cut back.
+    /// displacement constraints. Changes nothing: F is a function of U,
+    /// the load factor, the holds and the committed state (R16.1).
     void
     assemble(const VectorType &U, VectorType *F, MatrixType *J) const;
 
     /// Entries of KINSOL's scaling vectors for the multiplier rows and
-    /// unknowns (contact forces): 1 / (E_max A_ref).
+    /// unknowns (contact forces): 1 / (E_pair A_ref), E_pair the pair's
+    /// contact modulus (see contact_modulus()).
     void
-    set_scaling(VectorType  &residual_scale,
-                VectorType  &solution_scale,
-                const double scale) const;
+    set_scaling(VectorType &residual_scale, VectorType &solution_scale) const;
 
     /// Per pair: active nodes, total normal contact force, largest
     /// penetration; as statistics columns.
@@ -167,7 +186,7 @@ namespace glide
       double                          size = 0.; ///< facet size
       dealii::types::global_dof_index multiplier =
         dealii::numbers::invalid_dof_index;
-      double c = 0.; ///< NCP constant
+      double c = 0.; ///< NCP constant E_pair A / h
       double k = 0.; ///< penalty stiffness * area
       /// Surface slaves: area-weighted outward normal, and int N_a N_b dA
       /// with the neighbours b on the slave surface (keyed by x DoF).
@@ -176,7 +195,11 @@ namespace glide
     };
     struct Pair
     {
-      const ContactPairParameters        *parameters;
+      const ContactPairParameters *parameters;
+      /// The modulus that sets the contact stiffness of the pair: the
+      /// smaller of the slave's and the master's Young's moduli (a rigid
+      /// master counts as infinitely stiff), see setup().
+      double                              modulus = 0.;
       std::unique_ptr<RigidMaster<dim>>   master;  ///< analytical rigid
       std::unique_ptr<MasterSurface<dim>> surface; ///< deformable body
       /// Small sliding (R6): the anchors and tangent planes, per node (for
@@ -200,17 +223,12 @@ namespace glide
       /// Accumulated slip components along the local tangent directions
       /// (CSLIP1, CSLIP2; only the first in 2D).
       std::vector<std::array<double, 2>> slip_components;
-      /// Open/closed state at the last residual evaluation and the number
-      /// of switches in the current solve, per node (cycling detection).
-      mutable std::vector<signed char>  last_closed;
-      mutable std::vector<unsigned int> switches;
-      /// Deformable masters: per node, the pieces of the last two Newton
-      /// iterations, how often the projection went back to the piece before
-      /// (A, B, A), and the piece the node is held on for the rest of the
-      /// solve after `maximum_returns` of them (-1: none). At a faceted
-      /// corner the force direction jumps between the facets' normals, and
-      /// Newton can alternate between them forever (f = 0 only: a smoothed
-      /// master has no corners). The holds end with the solve. Carrying
+      /// Deformable faceted masters: per node, the piece it is held on
+      /// (-1: none), set by hold() between two attempts at a step. At a
+      /// faceted corner the force direction jumps between the facets'
+      /// normals, and Newton can alternate between them forever (f = 0
+      /// only: a smoothed master has no corners). The holds end with the
+      /// step. Carrying
       /// those still within 2 % of a facet of their piece into the next
       /// step was tried: the faceted ironing die's press took 10 instead of
       /// 39 cut-backs, but the full ironing run then stopped at load factor
@@ -218,9 +236,7 @@ namespace glide
       /// the held nodes accumulate: the 2D Hertz peak pressure with f = 0
       /// went from 2 % to 12 % too high, and the ironing die's nodes ended
       /// up 1.7 past their facets.
-      mutable std::vector<std::array<int, 2>> last_pieces;
-      mutable std::vector<unsigned int>       returns;
-      mutable std::vector<int>                held_piece;
+      std::vector<int> held_piece;
       /// Deformable masters: per node, the last projection with the slave
       /// position, master version() and held piece it was computed for
       /// (the residual and the Jacobian of one iterate share it).
@@ -303,6 +319,30 @@ namespace glide
            const std::string              &before,
            const std::string              &after);
 
+    /**
+     * Stiffness added to the Jacobian (never to the residual) for an open
+     * slave node closer to the master than its facet size h:
+     *   K += s_J c (1 - g/h)^2 dg/du (dg/du)^T,
+     * with c the node's NCP constant (E A / h). A body held only by contact
+     * (a cylinder pressed by a force onto a block, touching at one node)
+     * has rigid motions that no closed node resists yet: its Jacobian is
+     * singular, the direct solver fails or returns an arbitrary rotation,
+     * and the active set cycles. The springs of the nodes about to touch
+     * remove those motions from the Newton step. The residual, and hence
+     * the converged solution, is that of the unmodified problem; the
+     * Newton step is inexact only in the rows of open nodes near the
+     * master, which costs at most a factor s_J per iteration there.
+     */
+    double
+    stabilization_weight(const SlaveNode &node, const NodeState &s) const;
+
+    /// The factor s_J of stabilization_weight(): small enough that the
+    /// error contraction per iteration at open nodes, about s_J / (1 +
+    /// s_J), is far below Newton's, large enough that a free rigid motion
+    /// is resisted like a spring of 1/1000 of the contact stiffness.
+    static constexpr double stabilization = 1e-3;
+    bool                    stabilize     = true;
+
     /// Move the deformable masters to iterate @p U.
     void
     move_surfaces(const VectorType &U) const;
@@ -323,11 +363,5 @@ namespace glide
     /// round-off (a body resting on a point) then counts as closed instead
     /// of leaving the body floating with a singular stiffness matrix.
     double clearance = 0.;
-    /// Switches between open and closed per node and solve before the
-    /// solve is declared cycling.
-    static constexpr unsigned int maximum_switches = 4;
-    /// Returns to the piece before (A, B, A) after which a slave node is
-    /// held on its piece for the rest of the solve.
-    static constexpr unsigned int maximum_returns = 2;
   };
 } // namespace glide

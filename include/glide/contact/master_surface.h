@@ -45,14 +45,17 @@ namespace glide
    * tangents 2 f x1'(1 - f) and 2 f x2'(f), which is tangent to both facets
    * and is exactly the parabola with control points x1(1-f), node, x2(f)
    * when the facets are straight. Transitions sit at the facets' end nodes,
-   * never at mid-side nodes; a node between collinear facets gets one too,
-   * but its control points are collinear, so the surface there is exactly
-   * the facets (R1.2), and it stays smooth when the deforming master
-   * develops a kink at that node; a chain end on a symmetry plane (XSYMM/YSYMM,
-   * or the axis of an axisymmetric scene) is smoothed against the mirror image
-   * of its end facet (R2.1, R2.2). Smoothing never crosses the end of the
-   * master surface (R3.1); there the end facet is extended by 5 % of its
-   * parameter range, and a slave point beyond that is not in contact.
+   * never at mid-side nodes. A node between collinear linear facets gets
+   * one too, but its control points are collinear, so the surface there is
+   * exactly the facets (R1.2), and it stays smooth when the deforming
+   * master develops a kink at that node. Between quadratic facets whose
+   * reference tangents do not kink, the transition spans only
+   * quadratic_fraction of each facet (build_pieces_2d() says why); a chain end
+   * on a symmetry plane (XSYMM/YSYMM, or the axis of an axisymmetric scene) is
+   * smoothed against the mirror image of its end facet (R2.1, R2.2). Smoothing
+   * never crosses the end of the master surface (R3.1); there the end facet is
+   * extended by 5 % of its parameter range, and a slave point beyond that is
+   * not in contact.
    *
    * In 3D the pieces are the facets themselves; only the normal is
    * smoothed (R1.4): inside the lines at distance f from the edges (in the
@@ -120,7 +123,13 @@ namespace glide
     };
     struct Projection
     {
+      /// The outcome (house style 16): found and inside a piece (vertex
+      /// false), found and clamped at an edge or node (vertex true), or not
+      /// found: beyond the end of the master (failed false), or because
+      /// the closest-point iteration did not converge on a candidate piece
+      /// (failed true). Contact counts each per step (R16.3).
       bool         found  = false;
+      bool         failed = false;
       bool         vertex = false; ///< closest point on an edge/node
       unsigned int piece  = 0;
       Xi           xi     = {};
@@ -241,6 +250,12 @@ namespace glide
     {
       return polynomial_degree;
     }
+
+    /// Transition fraction at nodes between quadratic facets that do not
+    /// kink (build_pieces_2d()): small enough that the load is passed to
+    /// the facets' nodes within 4 f^2 = 0.16 % of their own proportions,
+    /// large enough to keep the surface C1 when the master deforms.
+    static constexpr double quadratic_fraction = 0.02;
 
   private:
     /// project() with candidates from the search tree within @p radius.

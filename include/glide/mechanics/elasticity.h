@@ -142,6 +142,19 @@ namespace glide
       return 1. / (max_youngs_modulus * reference_area);
     }
 
+    /// Per-row scaling of the displacement rows: 1 / (E_b A_ref), with E_b
+    /// the Young's modulus of the body the row belongs to (E_max for rigid
+    /// bodies, whose rows are constrained), so that a soft body's
+    /// equilibrium is resolved as tightly as a stiff one's (a body 1e6 times
+    /// softer than E_max would otherwise converge to 1e-4 only). Writes the
+    /// locally owned displacement entries of @p scale.
+    void
+    residual_scales(VectorType &scale) const;
+
+    /// Young's modulus of body @p b, +infinity for a rigid body.
+    double
+    youngs_modulus_of_body(const unsigned int b) const;
+
     /// Length that makes displacements unit-free (scene size).
     double
     length_scale() const
