@@ -84,13 +84,12 @@ namespace glide
 
     const auto &owned = elasticity.locally_owned();
     U.reinit(owned, comm);
-    // KINSOL's scalings: force rows by 1/(E_b A_ref) with E_b the modulus
-    // of the row's body, displacements by 1/L, contact rows and forces by
-    // 1/(E_pair A_ref) with E_pair the pair's contact modulus.
+    // KINSOL's scalings: force rows by 1/(E_min A_ref), displacements by
+    // 1/L, contact rows and forces by 1/(E_pair A_ref) with E_pair the
+    // pair's contact modulus.
     residual_scale.reinit(owned, comm);
     solution_scale.reinit(owned, comm);
     residual_scale = elasticity.residual_scale();
-    elasticity.residual_scales(residual_scale);
     solution_scale = 1. / elasticity.length_scale();
     contact.set_scaling(residual_scale, solution_scale);
 
@@ -187,7 +186,26 @@ namespace glide
         {
           // The monitor sees each Newton iterate once; a node that keeps
           // switching ends the solve early (it would not converge).
-          monitor.record(contact.status(u));
+          // The Jacobian-only stabilization of open nodes near the master
+          // (Contact::stabilization_weight()) while the active set is still
+          // changing; once it has settled, the exact Jacobian, and Newton
+          // converges quadratically.
+          const bool changed = monitor.record(contact.status(u));
+          contact.set_jacobian_stabilization(
+            Utilities::MPI::max(changed ? 1 : 0, comm) > 0);
+          // Nodes whose projection keeps going back and forth between two
+          // facets of a faceted master: end this attempt, the next one
+          // holds them (solve_step()).
+          if (stop_on_alternation &&
+              Utilities::MPI::sum(
+                static_cast<unsigned int>(monitor.holds().size()), comm) > 0)
+            {
+              restart      = u;
+              have_restart = true;
+              throw std::runtime_error(
+                "the projection of slave node(s) alternated between two "
+                "master facets meeting at a corner");
+            }
           const std::string cycling = monitor.cycling(comm);
           if (!cycling.empty())
             throw std::runtime_error(
@@ -305,38 +323,54 @@ namespace glide
   NonlinearSolver::Result
   Problem<dim>::solve_step(VectorType &U_trial)
   {
+    // Attempts at one step, each a KINSOL solve of a fixed problem: full
+    // Newton steps; when nodes alternate between two facets of a faceted
+    // master, the solve stops there and full Newton goes on from that
+    // iterate with those nodes held on one facet (at most three times);
+    // after any other failure, or then, once with line search from the
+    // step's initial guess. Every attempt's iterations count.
     const VectorType U_start = U_trial;
     monitor.reset();
+    stop_on_alternation = true;
+    have_restart        = false;
     auto result =
       newton->solve(U_trial, callbacks, residual_scale, solution_scale);
-    if (!result.converged && scene.nonlinear_solver.retry_with_line_search)
+    unsigned int attempts = 1;
+    while (!result.converged && scene.nonlinear_solver.retry_with_line_search)
       {
-        pcout << "  step failed with full Newton steps: " << result.message
-              << "\n  retrying with line search" << std::endl;
-        // Nodes whose projection alternated between two facets of a
-        // faceted master are held on one of them in the retry: a change of
-        // the problem, made between solves, reported in the log and the
-        // statistics (contact_<pair>_held).
+        // Holding is a change of the problem, made between solves, and
+        // reported in the log and the statistics (contact_<pair>_held).
         const auto holds = monitor.holds();
         const auto n_holds =
           Utilities::MPI::sum(static_cast<unsigned int>(holds.size()), comm);
+        contact.hold(holds);
+        const bool again = n_holds > 0 && attempts < 4;
+        pcout << "  step failed"
+              << (attempts == 1 ? " with full Newton steps" : "") << ": "
+              << result.message << std::endl;
         if (n_holds > 0)
-          {
-            contact.hold(holds);
-            pcout << "  holding " << n_holds
-                  << " slave node(s) on one master facet in the retry (their "
-                     "projection alternated between facets meeting at a "
-                     "corner)"
-                  << std::endl;
-          }
-        U_trial = U_start;
+          pcout << "  holding " << n_holds
+                << " slave node(s) on one master facet (their projection "
+                   "alternated between facets meeting at a corner)"
+                << std::endl;
+        pcout << (again ? "  retrying" : "  retrying with line search")
+              << std::endl;
+        // A solve stopped for alternating nodes goes on from where it was
+        // (a new solve of the problem with the holds); any other failure
+        // starts again from the step's initial guess.
+        U_trial      = (again && have_restart) ? restart : U_start;
+        have_restart = false;
         monitor.reset();
-        const auto first = result;
-        result =
-          damped->solve(U_trial, callbacks, residual_scale, solution_scale);
-        // Both attempts count.
+        // The last attempt runs to its end.
+        stop_on_alternation = again;
+        const auto first    = result;
+        result              = (again ? newton : damped)
+                   ->solve(U_trial, callbacks, residual_scale, solution_scale);
         result.iterations += first.iterations;
         result.linear_iterations += first.linear_iterations;
+        ++attempts;
+        if (!again)
+          break;
       }
     return result;
   }

@@ -114,5 +114,11 @@ namespace glide
     VectorType                       U;
     /// Load factor of the step being solved.
     double t = 0.;
+    /// Whether the current attempt ends as soon as a slave node alternates
+    /// between two facets (so that the next one can hold it).
+    bool stop_on_alternation = true;
+    /// The iterate at which an attempt stopped for alternating nodes.
+    VectorType restart;
+    bool       have_restart = false;
   };
 } // namespace glide

@@ -101,7 +101,8 @@ namespace glide
       "0",
       Patterns::Double(0.),
       "Penalty stiffness (stress per length). 0: automatic, 1000 "
-      "E_max / h with h the mean slave facet size.");
+      "E_pair / h with h the mean slave facet size and E_pair the smaller "
+      "Young's modulus of the slave's and the master's body.");
     prm.declare_entry(
       "Linearization",
       "unsymmetric",

@@ -203,6 +203,11 @@ namespace glide
       for (const auto &b : scene.bodies)
         max_youngs_modulus =
           std::max(max_youngs_modulus, b.material.youngs_modulus);
+    min_youngs_modulus = max_youngs_modulus;
+    for (const auto &b : scene.bodies)
+      if (!b.rigid)
+        min_youngs_modulus =
+          std::min(min_youngs_modulus, b.material.youngs_modulus);
 
     if (scene.manufactured_solution != "none")
       {
@@ -344,31 +349,6 @@ namespace glide
     AssertIndexRange(b, scene.bodies.size());
     return scene.bodies[b].rigid ? std::numeric_limits<double>::infinity() :
                                    scene.bodies[b].material.youngs_modulus;
-  }
-
-  template <int dim>
-  void
-  Elasticity<dim>::residual_scales(VectorType &scale) const
-  {
-    // A node shared by bodies of different moduli takes the largest.
-    std::map<types::global_dof_index, double> modulus;
-    std::vector<types::global_dof_index>      dofs(
-      dof_handler.get_fe().n_dofs_per_cell());
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned() || cell->is_ghost())
-        {
-          const unsigned int b = cell->material_id();
-          const double       E = scene.bodies[b].rigid ?
-                                   max_youngs_modulus :
-                                   scene.bodies[b].material.youngs_modulus;
-          cell->get_dof_indices(dofs);
-          for (const auto i : dofs)
-            if (displacement_owned().is_element(i))
-              modulus[i] = std::max(modulus[i], E);
-        }
-    for (const auto &[i, E] : modulus)
-      scale[i] = 1. / (E * reference_area);
-    scale.compress(VectorOperation::insert);
   }
 
   template <int dim>

@@ -26,7 +26,8 @@ namespace glide
                       "1e-10",
                       Patterns::Double(0.),
                       "Convergence when the max-norm of the residual, "
-                      "scaled by 1/(E_max A_ref) with A_ref the mean "
+                      "scaled by 1/(E_min A_ref) with E_min the softest "
+                      "deformable body's Young's modulus and A_ref the mean "
                       "boundary-face measure, is below this. Unit-free: the "
                       "same value works in SI and in mm-N-MPa. 1e-8 to 1e-12 "
                       "are sensible.");

@@ -48,10 +48,18 @@ namespace glide
     /// Returns to the piece before (A, B, A) after which a node is held.
     static constexpr unsigned int maximum_returns = 2;
 
+    /// Iterates recorded since the last reset().
+    unsigned int
+    n_recorded() const
+    {
+      return recorded;
+    }
+
     /// Forget everything: a new solve begins.
     void
     reset()
     {
+      recorded = 0;
       last.clear();
       switches.clear();
       pieces.clear();
@@ -59,10 +67,13 @@ namespace glide
     }
 
     /// Record the state of every locally owned slave node at one Newton
-    /// iteration.
-    void
+    /// iteration. Returns whether any of them is open where it was closed
+    /// at the last iteration or the other way round (true at the first).
+    bool
     record(const std::vector<Status> &status)
     {
+      bool changed = false;
+      ++recorded;
       if (last.size() != status.size())
         {
           last = status;
@@ -71,13 +82,16 @@ namespace glide
           pieces.assign(status.size(), {{-1, -1}});
           for (unsigned int k = 0; k < status.size(); ++k)
             pieces[k][1] = status[k].closed ? status[k].piece : -1;
-          return;
+          return true;
         }
       for (unsigned int k = 0; k < status.size(); ++k)
         {
           const auto &s = status[k];
           if (s.closed != last[k].closed)
-            ++switches[k];
+            {
+              ++switches[k];
+              changed = true;
+            }
           if (s.holdable && s.closed && s.piece >= 0 && s.piece != pieces[k][1])
             {
               if (s.piece == pieces[k][0])
@@ -86,6 +100,7 @@ namespace glide
             }
           last[k] = s;
         }
+      return changed;
     }
 
     /// The reference positions of the nodes (of every process) that
@@ -124,5 +139,6 @@ namespace glide
     std::vector<unsigned int>       switches;
     std::vector<std::array<int, 2>> pieces;
     std::vector<unsigned int>       returns;
+    unsigned int                    recorded = 0;
   };
 } // namespace glide

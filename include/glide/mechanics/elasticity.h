@@ -134,22 +134,25 @@ namespace glide
       return max_youngs_modulus;
     }
 
+    /// The smallest Young's modulus of the deformable bodies.
+    double
+    softest_youngs_modulus() const
+    {
+      return min_youngs_modulus;
+    }
+
     /// Scaling of residual rows so that the tolerance is unit-free: 1 /
-    /// (E_max A_ref), A_ref the mean boundary-face measure.
+    /// (E_min A_ref), A_ref the mean boundary-face measure, E_min the
+    /// softest deformable body's modulus. The forces a scene carries are
+    /// set by its softest body (a stiff body pressed into a soft one sees
+    /// the soft one's pressures): with E_max instead, the equilibrium of a
+    /// body 1e6 times softer was resolved to 1e-4 only, and with each
+    /// body's own modulus the load on the stiff one sat at the tolerance.
     double
     residual_scale() const
     {
-      return 1. / (max_youngs_modulus * reference_area);
+      return 1. / (min_youngs_modulus * reference_area);
     }
-
-    /// Per-row scaling of the displacement rows: 1 / (E_b A_ref), with E_b
-    /// the Young's modulus of the body the row belongs to (E_max for rigid
-    /// bodies, whose rows are constrained), so that a soft body's
-    /// equilibrium is resolved as tightly as a stiff one's (a body 1e6 times
-    /// softer than E_max would otherwise converge to 1e-4 only). Writes the
-    /// locally owned displacement entries of @p scale.
-    void
-    residual_scales(VectorType &scale) const;
 
     /// Young's modulus of body @p b, +infinity for a rigid body.
     double
@@ -311,7 +314,8 @@ namespace glide
     std::unique_ptr<ManufacturedSolution<dim>>                exact;
     std::vector<dealii::types::boundary_id>                   symmetry_ids[3];
     std::map<std::string, const NodeSetParameters *>          scene_node_sets;
-    double max_youngs_modulus = 1., reference_area = 1.;
-    bool   axisymmetric;
+    double max_youngs_modulus = 1., min_youngs_modulus = 1.,
+           reference_area = 1.;
+    bool axisymmetric;
   };
 } // namespace glide
