@@ -30,7 +30,7 @@ namespace glide
    * lambda (>= 0), numbered after the displacement DoFs. Its equation is the
    * complementarity function
    *   C(lambda, g) = lambda - max(0, lambda - c g) = 0,
-   * which holds exactly when lambda >= 0, g >= 0, lambda g = 0; c = E_max
+   * which holds exactly when lambda >= 0, g >= 0, lambda g = 0; c = E_pair
    * A_s / h_s (A_s the slave node's tributary area, h_s its facet size) makes
    * c g a force, so rows and iteration counts do not depend on units. The
    * active set is read off the current iterate inside the residual: Newton

@@ -16,7 +16,7 @@ namespace glide
     /// 'automatic' in scenes with contact).
     bool retry_with_line_search = false;
     /// Stop when the scaled max-norm of the residual is below this. The
-    /// residual is scaled by 1 / (E_max * A_ref), A_ref the mean boundary
+    /// residual is scaled by 1 / (E_min * A_ref), A_ref the mean boundary
     /// facet measure, so the tolerance is unit-free (a strain-like number).
     double       tolerance          = 1e-10;
     unsigned int maximum_iterations = 25;
