@@ -150,6 +150,8 @@ namespace glide
     statistics =
       std::make_unique<Statistics>(directory + "/statistics.csv", comm);
     vtu = std::make_unique<VtuWriter<dim>>(elasticity, directory, scene.name);
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      contact_output = std::make_unique<ContactWriter<dim>>(directory);
   }
 
   template <int dim>
@@ -401,14 +403,18 @@ namespace glide
                            format_number(force[d]));
       if (contact.active())
         {
-          contact.update_slip(U, t_old, t);
+          contact.commit_step(U, t_old, t);
           for (const auto &m : contact.take_messages())
             pcout << "  " << m << std::endl;
         }
       for (const auto &column : contact.statistics(U))
         row.push_back(column);
       if (contact.active())
-        contact.write_nodes(U, directory, step, t, scene.output.write_vtu);
+        {
+          const auto fields = contact.nodal_fields(U, t);
+          if (contact_output)
+            contact_output->write(fields, step, t, scene.output.write_vtu);
+        }
       if (scene.manufactured_solution != "none")
         {
           const auto [l2, h1] = elasticity.errors(U);

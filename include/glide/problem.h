@@ -3,6 +3,7 @@
 #include <glide/contact/active_set_monitor.h>
 #include <glide/contact/contact.h>
 #include <glide/mechanics/elasticity.h>
+#include <glide/output/contact_output.h>
 #include <glide/output/statistics.h>
 #include <glide/output/vtu_writer.h>
 #include <glide/scene/scene.h>
@@ -101,17 +102,18 @@ namespace glide
     Elasticity<dim> elasticity;
     Contact<dim>    contact;
     /// The Jacobian outlives the linear solver: Amesos keeps a pointer.
-    MatrixType                       jacobian;
-    LinearSolver                     linear_solver;
-    std::vector<VectorType>          modes;
-    NonlinearSolver::Callbacks       callbacks;
-    std::unique_ptr<NonlinearSolver> newton, damped;
-    VectorType                       residual_scale, solution_scale;
-    ActiveSetMonitor<dim>            monitor;
-    std::string                      directory;
-    std::unique_ptr<Statistics>      statistics;
-    std::unique_ptr<VtuWriter<dim>>  vtu;
-    VectorType                       U;
+    MatrixType                          jacobian;
+    LinearSolver                        linear_solver;
+    std::vector<VectorType>             modes;
+    NonlinearSolver::Callbacks          callbacks;
+    std::unique_ptr<NonlinearSolver>    newton, damped;
+    VectorType                          residual_scale, solution_scale;
+    ActiveSetMonitor<dim>               monitor;
+    std::string                         directory;
+    std::unique_ptr<Statistics>         statistics;
+    std::unique_ptr<VtuWriter<dim>>     vtu;
+    std::unique_ptr<ContactWriter<dim>> contact_output;
+    VectorType                          U;
     /// Load factor of the step being solved.
     double t = 0.;
     /// Whether the current attempt ends as soon as a slave node alternates

@@ -388,6 +388,15 @@ namespace
     F3 -= F1;
     EXPECT_EQ(F2.linfty_norm(), 0.) << tag;
     EXPECT_EQ(F3.linfty_norm(), 0.) << tag;
+    // The history committed after a converged step (positions,
+    // projections, offsets, slip) is not read by these frictionless
+    // residuals: committing at U changes nothing at U.
+    s.contact.commit_step(U, 0., 0.);
+    VectorType F4(F1);
+    F4 = 0.;
+    s.contact.assemble(U, &F4, nullptr);
+    F4 -= F1;
+    EXPECT_EQ(F4.linfty_norm(), 0.) << tag;
     unsigned int closed = 0;
     for (const auto &st : status)
       closed += st.closed ? 1 : 0;
@@ -441,6 +450,30 @@ TEST(Contact, ResidualIsAFunctionOfTheIterate)
     expect_pure_residual<2>(two_blocks(pair),
                             "blocks" +
                               std::to_string(std::string(pair).size()));
+}
+
+// Issue 12: the formulation of a pair is chosen by name from 'Formulation'
+// and 'Sliding', and the log names it with its enforcement.
+TEST(Contact, FormulationsAreChosenByName)
+{
+  const std::vector<std::pair<std::string, std::string>> cases{
+    {"", "node to surface, finite sliding"},
+    {"  set Enforcement = penalty\n", "node to surface, finite sliding"},
+    // Small sliding in a geometrically linear scene is infinitesimal.
+    {"  set Sliding = small\n", "node to surface, infinitesimal sliding"},
+    {"  set Sliding = small\n  set Formulation = surface to surface\n",
+     "surface to surface, infinitesimal sliding"}};
+  for (const auto &[pair, name] : cases)
+    {
+      glide_test::ContactFixture<2> s(two_blocks(pair), "names.prm");
+      const auto                    effects = s.contact.active_effects();
+      ASSERT_EQ(effects.size(), 1u);
+      EXPECT_NE(effects[0].find("(" + name), std::string::npos) << effects[0];
+      const std::string enforcement =
+        pair.find("penalty") != std::string::npos ? "penalty" : "hard";
+      EXPECT_NE(effects[0].find(", " + enforcement + ", "), std::string::npos)
+        << effects[0];
+    }
 }
 
 // R13.1: local tangent directions by the documented convention, an

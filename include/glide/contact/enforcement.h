@@ -1,0 +1,168 @@
+#pragma once
+
+#include <glide/contact/formulation.h>
+
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace glide
+{
+  /**
+   * How the constraints of a pair are enforced (DESIGN.md, second
+   * generation): the contact force of a constraint at an iterate and the
+   * constraint's rows and columns of the residual and Jacobian. Hard
+   * enforcement adds a block of block_size() multipliers per constraint
+   * (the normal force now; friction adds dim - 1 tangential ones without a
+   * redesign); penalty adds none.
+   */
+  template <int dim>
+  class ContactEnforcement
+  {
+  public:
+    using Linearization = typename MasterSurface<dim>::Linearization;
+
+    /// The normal force of a constraint and whether it is closed.
+    struct Force
+    {
+      double lambda = 0.;
+      bool   closed = false;
+    };
+
+    virtual ~ContactEnforcement() = default;
+
+    /// "hard" or "penalty".
+    virtual std::string
+    name() const = 0;
+
+    /// Multipliers per constraint.
+    virtual unsigned int
+    block_size() const = 0;
+
+    /// The force of constraint @p s of node @p node at iterate @p U.
+    virtual Force
+    force(const SlaveNode<dim>  &node,
+          const Constraint<dim> &s,
+          const VectorType      &U) const = 0;
+
+    /**
+     * The constraint's local residual @p rhs and Jacobian @p K in the rows
+     * and columns @p idx: the displacement DoFs of @p l (if s.found()),
+     * then the node's multipliers. Displacement rows: -lambda G, G the
+     * force direction, with Jacobian -lambda dG/du and the coupling with
+     * the constraint; @p symmetrized uses the mean of G and dg/du on both
+     * sides (R5.2); @p stabilization > 0 adds the Jacobian-only term
+     * stabilization dg dg^T (Contact::stabilization_weight()).
+     */
+    virtual void
+    local(const SlaveNode<dim>                         &node,
+          const Constraint<dim>                        &s,
+          const Force                                  &f,
+          const Linearization                          &l,
+          const bool                                    symmetrized,
+          const double                                  stabilization,
+          std::vector<dealii::types::global_dof_index> &idx,
+          dealii::Vector<double>                       &rhs,
+          dealii::FullMatrix<double>                   &K) const = 0;
+  };
+
+  /**
+   * Hard contact: one multiplier lambda (the normal force) per constraint,
+   * with the complementarity function
+   *   C(lambda, g) = lambda - max(0, lambda - c (g - g_0)) = 0,
+   * which holds exactly when lambda >= 0, g >= g_0, lambda (g - g_0) = 0; c
+   * = E_pair A / h makes c g a force, so rows and iteration counts do not
+   * depend on units. g_0 is the clearance (1e-10 times the scene size): a
+   * node that touches the master up to round-off counts as closed instead
+   * of leaving a body floating with a singular stiffness matrix.
+   */
+  template <int dim>
+  class HardEnforcement : public ContactEnforcement<dim>
+  {
+  public:
+    using typename ContactEnforcement<dim>::Force;
+    using typename ContactEnforcement<dim>::Linearization;
+
+    explicit HardEnforcement(const double clearance)
+      : clearance(clearance)
+    {}
+
+    std::string
+    name() const override
+    {
+      return "hard";
+    }
+
+    unsigned int
+    block_size() const override
+    {
+      return 1;
+    }
+
+    Force
+    force(const SlaveNode<dim>  &node,
+          const Constraint<dim> &s,
+          const VectorType      &U) const override;
+
+    void
+    local(const SlaveNode<dim>                         &node,
+          const Constraint<dim>                        &s,
+          const Force                                  &f,
+          const Linearization                          &l,
+          const bool                                    symmetrized,
+          const double                                  stabilization,
+          std::vector<dealii::types::global_dof_index> &idx,
+          dealii::Vector<double>                       &rhs,
+          dealii::FullMatrix<double>                   &K) const override;
+
+  private:
+    const double clearance;
+  };
+
+  /// Penalty contact: lambda = k max(0, -g), k the penalty stiffness times
+  /// the node's area (R4).
+  template <int dim>
+  class PenaltyEnforcement : public ContactEnforcement<dim>
+  {
+  public:
+    using typename ContactEnforcement<dim>::Force;
+    using typename ContactEnforcement<dim>::Linearization;
+
+    std::string
+    name() const override
+    {
+      return "penalty";
+    }
+
+    unsigned int
+    block_size() const override
+    {
+      return 0;
+    }
+
+    Force
+    force(const SlaveNode<dim>  &node,
+          const Constraint<dim> &s,
+          const VectorType      &U) const override;
+
+    void
+    local(const SlaveNode<dim>                         &node,
+          const Constraint<dim>                        &s,
+          const Force                                  &f,
+          const Linearization                          &l,
+          const bool                                    symmetrized,
+          const double                                  stabilization,
+          std::vector<dealii::types::global_dof_index> &idx,
+          dealii::Vector<double>                       &rhs,
+          dealii::FullMatrix<double>                   &K) const override;
+  };
+
+  /// The enforcement the pair's parameters name.
+  template <int dim>
+  std::unique_ptr<ContactEnforcement<dim>>
+  make_enforcement(const ContactPairParameters &parameters,
+                   const double                 clearance);
+} // namespace glide

@@ -1,0 +1,274 @@
+#pragma once
+
+#include <glide/contact/master_surface.h>
+#include <glide/contact/rigid_master.h>
+#include <glide/mechanics/elasticity.h>
+#include <glide/scene/scene.h>
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <array>
+#include <chrono>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace glide
+{
+  /// A slave node of a contact pair (locally owned), with what every
+  /// formulation and enforcement needs to know of it.
+  template <int dim>
+  struct SlaveNode
+  {
+    dealii::Point<dim>                               X;
+    std::array<dealii::types::global_dof_index, dim> dofs;
+    double area = 0.; ///< tributary area int N_a dA
+    double size = 0.; ///< mean size of the adjacent slave facets
+    /// First multiplier of the node's block (hard enforcement: the normal
+    /// force; friction will add dim - 1 tangential ones).
+    dealii::types::global_dof_index multiplier =
+      dealii::numbers::invalid_dof_index;
+    double c = 0.; ///< NCP constant E_pair A / h
+    double k = 0.; ///< penalty stiffness * area
+    /// Surface slaves: area-weighted outward normal, and int N_a N_b dA
+    /// with the neighbours b on the slave surface (keyed by x DoF).
+    dealii::Tensor<1, dim>                            normal;
+    std::map<dealii::types::global_dof_index, double> mass;
+  };
+
+  /// Why a constraint exists or not at an iterate (house style: an explicit
+  /// outcome that callers handle and the statistics count, R16.3).
+  enum class Outcome
+  {
+    found,      ///< the slave point has a gap to the master
+    beyond_end, ///< projects beyond the end of the master: open
+    failed,     ///< the closest-point iteration did not converge: open
+    unanchored  ///< small sliding without an anchor (R7.4): never closes
+  };
+
+  /// The geometry of one constraint at an iterate: what a formulation
+  /// computes from U and its committed history alone.
+  template <int dim>
+  struct Constraint
+  {
+    Outcome                outcome = Outcome::found;
+    dealii::Point<dim>     x; ///< current slave node position
+    double                 gap = 0.;
+    dealii::Tensor<1, dim> normal;
+    /// The constraint's slave point: the node, or (surface to surface) the
+    /// weighted centre of its averaging region.
+    dealii::Point<dim> point;
+    dealii::Point<dim> anchor; ///< small sliding: current anchor point
+    /// Local tangent directions (R13.1).
+    std::array<dealii::Tensor<1, dim>, dim - 1> tangents;
+    /// Finite sliding: the projection (rigid analytical or deformable).
+    typename RigidMaster<dim>::Projection   rigid;
+    typename MasterSurface<dim>::Projection projection;
+
+    bool
+    found() const
+    {
+      return outcome == Outcome::found;
+    }
+  };
+
+  /// What a formulation of one contact pair gets from the contact part.
+  template <int dim>
+  struct PairContext
+  {
+    const Scene                 &scene;
+    const Elasticity<dim>       &elasticity;
+    MPI_Comm                     comm;
+    const ContactPairParameters &parameters;
+    std::string                  path; ///< "Contact pair <name>"
+    /// Log a list of nodes (gathered over all processes) as
+    /// before + count + after + ": " + list; nothing if the list is empty.
+    std::function<void(const std::vector<std::string> &,
+                       const std::string &,
+                       const std::string &)>
+      report;
+    /// Log one message (first process only).
+    std::function<void(const std::string &)> note;
+  };
+
+  /**
+   * One contact formulation of one pair (DESIGN.md, "The contact part,
+   * second generation"): it turns the current iterate into constraints,
+   * one per slave node: the gap, its derivative and where the force goes
+   * (evaluate(), linearize()). It reads only U, the load factor, the holds
+   * of the current attempt and the history stored by commit_step(), so
+   * that the residual is a function of the iterate (R16.1). The
+   * enforcement (hard, penalty) is not its business.
+   *
+   * Formulations are chosen by name (make_formulation()): "node to
+   * surface, finite sliding" (NodeToSurfaceFinite), "node to surface,
+   * small sliding" and "surface to surface, small sliding"
+   * (SmallSlidingFormulation).
+   */
+  template <int dim>
+  class Formulation
+  {
+  public:
+    using Linearization = typename MasterSurface<dim>::Linearization;
+
+    Formulation(const PairContext<dim>             &context,
+                std::unique_ptr<RigidMaster<dim>>   master,
+                std::unique_ptr<MasterSurface<dim>> surface);
+
+    virtual ~Formulation() = default;
+
+    /// The name of the formulation as the scene writes it, e.g. "node to
+    /// surface, finite sliding".
+    virtual std::string
+    name() const = 0;
+
+    /// Set up the formulation's data for the slave nodes @p nodes (kept by
+    /// reference: the vector must outlive the formulation and not change).
+    virtual void
+    setup(const std::vector<SlaveNode<dim>> &nodes);
+
+    /// Move rigid masters to load factor @p t.
+    void
+    set_time(const double t);
+
+    /// Move a deformable master to iterate @p U.
+    virtual void
+    move(const VectorType &U) const;
+
+    /// The constraint of slave node @p i at iterate @p U (move() must have
+    /// been called with U).
+    virtual Constraint<dim>
+    evaluate(const unsigned int i, const VectorType &U) const = 0;
+
+    /// Gap, force direction and their derivatives of constraint @p s of
+    /// node @p i at iterate @p U (s.found() only).
+    virtual void
+    linearize(const unsigned int     i,
+              const Constraint<dim> &s,
+              const VectorType      &U,
+              Linearization         &l) const = 0;
+
+    /// The DoFs the constraint of node @p i couples with (besides the
+    /// node's own and its multipliers), for the sparsity pattern; @p U is
+    /// the iterate the pattern is built at (empty before the first solve).
+    virtual void
+    couplings(const unsigned int                            i,
+              const VectorType                             &U,
+              std::vector<dealii::types::global_dof_index> &dofs);
+
+    /// True if constraint @p s of node @p i reaches DoFs outside those of
+    /// the last couplings().
+    virtual bool
+    outside_pattern(const unsigned int i, const Constraint<dim> &s) const;
+
+    /// The master piece of constraint @p s that the driver may hold the
+    /// node on (faceted deformable masters; -1: none).
+    virtual int
+    holdable_piece(const Constraint<dim> &s) const;
+
+    /// Hold node @p i on piece @p piece for the rest of the step.
+    virtual void
+    hold(const unsigned int i, const int piece);
+
+    /// End all holds.
+    virtual void
+    release_holds();
+
+    /// Number of held nodes.
+    virtual unsigned int
+    n_held() const;
+
+    /// False where the Jacobian stabilization of open nodes must not be
+    /// used (see Contact::stabilization_weight()).
+    virtual bool
+    stabilizable() const;
+
+    /// Constraints that fell back to a simpler formulation (R9.4).
+    virtual unsigned int
+    n_fallbacks() const;
+
+    /// Add the normal force @p lambda of constraint @p i to the nodal
+    /// forces @p nodal (surface to surface: shared over its region).
+    virtual void
+    distribute(const unsigned int   i,
+               const double         lambda,
+               std::vector<double> &nodal) const;
+
+    /// After a converged step from load factor @p t_old to @p t_new, with
+    /// the constraints @p s and the closed flags @p closed at the converged
+    /// iterate: accumulate slip (R12) and store the history the next step
+    /// starts from (positions, projections, offsets).
+    virtual void
+    commit_step(const VectorType                   &U,
+                const std::vector<Constraint<dim>> &s,
+                const std::vector<bool>            &closed,
+                const double                        t_old,
+                const double                        t_new) = 0;
+
+    /// Accumulated slip CSLIP and its components CSLIP1 (, CSLIP2).
+    const std::vector<double> &
+    slip() const
+    {
+      return slip_length;
+    }
+    const std::vector<std::array<double, 2>> &
+    slip_components() const
+    {
+      return slip_parts;
+    }
+
+    /// Wall time spent in searches (R-tree set-up and projections), in
+    /// seconds.
+    double
+    search_time() const
+    {
+      return searching.count();
+    }
+
+    /// The analytical rigid master, if any.
+    const RigidMaster<dim> *
+    rigid_master() const
+    {
+      return master.get();
+    }
+
+    /// The master surface of a deformable (or meshed rigid) body, if any.
+    const MasterSurface<dim> *
+    master_surface() const
+    {
+      return surface.get();
+    }
+
+  protected:
+    /// Add the tangential part of the relative motion @p relative of node
+    /// @p i to its slip, with components along the tangents of @p normal.
+    void
+    accumulate_slip(const unsigned int            i,
+                    const dealii::Tensor<1, dim> &normal,
+                    const dealii::Tensor<1, dim> &relative);
+
+    /// The current position of node @p i.
+    dealii::Point<dim>
+    position(const unsigned int i, const VectorType &U) const;
+
+    PairContext<dim>                      context;
+    std::unique_ptr<RigidMaster<dim>>     master;
+    std::unique_ptr<MasterSurface<dim>>   surface;
+    const std::vector<SlaveNode<dim>>    *nodes = nullptr;
+    double                                time  = 0.;
+    std::vector<double>                   slip_length;
+    std::vector<std::array<double, 2>>    slip_parts;
+    mutable std::chrono::duration<double> searching{0.};
+  };
+
+  /// The formulation that the pair's parameters name ('Formulation' and
+  /// 'Sliding'), with its master.
+  template <int dim>
+  std::unique_ptr<Formulation<dim>>
+  make_formulation(const PairContext<dim>             &context,
+                   std::unique_ptr<RigidMaster<dim>>   master,
+                   std::unique_ptr<MasterSurface<dim>> surface);
+} // namespace glide

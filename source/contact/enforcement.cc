@@ -1,0 +1,163 @@
+#include <glide/contact/enforcement.h>
+
+namespace glide
+{
+  using namespace dealii;
+
+  namespace
+  {
+    /// The couplings between the displacements and the constraint: the
+    /// force direction (column) and dg/du (row), their mean when
+    /// symmetrized (R5.2); the displacement block -lambda dG/du (made
+    /// symmetric when symmetrized).
+    template <int dim>
+    void
+    displacement_block(const typename MasterSurface<dim>::Linearization &l,
+                       const double                                      lambda,
+                       const bool          symmetrized,
+                       const double        stabilization,
+                       Vector<double>     &column,
+                       Vector<double>     &row,
+                       Vector<double>     &rhs,
+                       FullMatrix<double> &K)
+    {
+      const unsigned int m = l.dofs.size();
+      for (unsigned int a = 0; a < m; ++a)
+        {
+          rhs(a) = -lambda * l.force(a);
+          for (unsigned int b = 0; b < m; ++b)
+            K(a, b) = -lambda * l.dforce(a, b);
+        }
+      column = l.force;
+      row    = l.dgap;
+      if (symmetrized)
+        {
+          for (unsigned int a = 0; a < m; ++a)
+            for (unsigned int b = a + 1; b < m; ++b)
+              K(a, b) = K(b, a) = 0.5 * (K(a, b) + K(b, a));
+          column += l.dgap;
+          column *= 0.5;
+          row = column;
+        }
+      // Jacobian stabilization of open nodes near the master
+      // (Contact::stabilization_weight(); the residual is untouched).
+      if (stabilization > 0.)
+        for (unsigned int a = 0; a < m; ++a)
+          for (unsigned int b = 0; b < m; ++b)
+            K(a, b) += stabilization * row(a) * row(b);
+    }
+  } // namespace
+
+  template <int dim>
+  typename ContactEnforcement<dim>::Force
+  HardEnforcement<dim>::force(const SlaveNode<dim>  &node,
+                              const Constraint<dim> &s,
+                              const VectorType      &U) const
+  {
+    Force f;
+    f.lambda = U[node.multiplier];
+    // Active where lambda - c g >= 0: then C = c g (closed, g -> 0);
+    // otherwise C = lambda (open, lambda -> 0).
+    f.closed = s.found() && f.lambda - node.c * (s.gap - clearance) >= 0.;
+    return f;
+  }
+
+  template <int dim>
+  void
+  HardEnforcement<dim>::local(const SlaveNode<dim>  &node,
+                              const Constraint<dim> &s,
+                              const Force           &f,
+                              const Linearization   &l,
+                              const bool             symmetrized,
+                              const double           stabilization,
+                              std::vector<types::global_dof_index> &idx,
+                              Vector<double>                       &rhs,
+                              FullMatrix<double>                   &K) const
+  {
+    if (!s.found())
+      {
+        // No gap (beyond the end of the master, no anchor, failed
+        // projection): open, lambda -> 0.
+        idx.assign(1, node.multiplier);
+        rhs.reinit(1);
+        K.reinit(1, 1);
+        rhs(0)  = f.lambda;
+        K(0, 0) = 1.;
+        return;
+      }
+    const unsigned int m = l.dofs.size();
+    idx                  = l.dofs;
+    idx.push_back(node.multiplier);
+    rhs.reinit(m + 1);
+    K.reinit(m + 1, m + 1);
+    Vector<double> column, row;
+    displacement_block<dim>(
+      l, f.lambda, symmetrized, stabilization, column, row, rhs, K);
+    rhs(m) = f.closed ? node.c * (l.gap - clearance) : f.lambda;
+    for (unsigned int a = 0; a < m; ++a)
+      {
+        K(a, m) = -column(a);
+        K(m, a) = f.closed ? node.c * row(a) : 0.;
+      }
+    K(m, m) = f.closed ? 0. : 1.;
+  }
+
+  template <int dim>
+  typename ContactEnforcement<dim>::Force
+  PenaltyEnforcement<dim>::force(const SlaveNode<dim>  &node,
+                                 const Constraint<dim> &s,
+                                 const VectorType &) const
+  {
+    Force f;
+    f.lambda = s.found() ? node.k * std::max(0., -s.gap) : 0.;
+    f.closed = s.found() && s.gap < 0.;
+    return f;
+  }
+
+  template <int dim>
+  void
+  PenaltyEnforcement<dim>::local(const SlaveNode<dim>  &node,
+                                 const Constraint<dim> &s,
+                                 const Force           &f,
+                                 const Linearization   &l,
+                                 const bool             symmetrized,
+                                 const double           stabilization,
+                                 std::vector<types::global_dof_index> &idx,
+                                 Vector<double>                       &rhs,
+                                 FullMatrix<double>                   &K) const
+  {
+    idx.clear();
+    if (!s.found())
+      return;
+    const unsigned int m = l.dofs.size();
+    idx                  = l.dofs;
+    rhs.reinit(m);
+    K.reinit(m, m);
+    Vector<double> column, row;
+    displacement_block<dim>(
+      l, f.lambda, symmetrized, stabilization, column, row, rhs, K);
+    if (f.closed)
+      for (unsigned int a = 0; a < m; ++a)
+        for (unsigned int b = 0; b < m; ++b)
+          K(a, b) += node.k * column(a) * row(b);
+  }
+
+  template <int dim>
+  std::unique_ptr<ContactEnforcement<dim>>
+  make_enforcement(const ContactPairParameters &parameters,
+                   const double                 clearance)
+  {
+    if (parameters.enforcement == Enforcement::hard)
+      return std::make_unique<HardEnforcement<dim>>(clearance);
+    return std::make_unique<PenaltyEnforcement<dim>>();
+  }
+
+  template class HardEnforcement<2>;
+  template class HardEnforcement<3>;
+  template class PenaltyEnforcement<2>;
+  template class PenaltyEnforcement<3>;
+  template std::unique_ptr<ContactEnforcement<2>>
+  make_enforcement<2>(const ContactPairParameters &, const double);
+  template std::unique_ptr<ContactEnforcement<3>>
+  make_enforcement<3>(const ContactPairParameters &, const double);
+} // namespace glide

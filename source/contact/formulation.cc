@@ -1,0 +1,170 @@
+#include <glide/contact/formulation.h>
+#include <glide/contact/node_to_surface.h>
+#include <glide/contact/small_sliding.h>
+#include <glide/contact/small_sliding_formulation.h>
+#include <glide/scene/input_error.h>
+
+namespace glide
+{
+  using namespace dealii;
+
+  template <int dim>
+  Formulation<dim>::Formulation(const PairContext<dim>             &context,
+                                std::unique_ptr<RigidMaster<dim>>   master,
+                                std::unique_ptr<MasterSurface<dim>> surface)
+    : context(context)
+    , master(std::move(master))
+    , surface(std::move(surface))
+  {}
+
+  template <int dim>
+  void
+  Formulation<dim>::setup(const std::vector<SlaveNode<dim>> &slave_nodes)
+  {
+    nodes = &slave_nodes;
+    slip_length.assign(slave_nodes.size(), 0.);
+    slip_parts.assign(slave_nodes.size(), {{0., 0.}});
+  }
+
+  template <int dim>
+  void
+  Formulation<dim>::set_time(const double t)
+  {
+    time = t;
+    if (master)
+      master->set_time(t);
+  }
+
+  template <int dim>
+  void
+  Formulation<dim>::move(const VectorType &U) const
+  {
+    if (!surface)
+      return;
+    const auto start = std::chrono::steady_clock::now();
+    surface->set_displacement(U, true);
+    searching += std::chrono::steady_clock::now() - start;
+  }
+
+  template <int dim>
+  void
+  Formulation<dim>::couplings(const unsigned int,
+                              const VectorType &,
+                              std::vector<types::global_dof_index> &)
+  {}
+
+  template <int dim>
+  bool
+  Formulation<dim>::outside_pattern(const unsigned int,
+                                    const Constraint<dim> &) const
+  {
+    return false;
+  }
+
+  template <int dim>
+  int
+  Formulation<dim>::holdable_piece(const Constraint<dim> &) const
+  {
+    return -1;
+  }
+
+  template <int dim>
+  void
+  Formulation<dim>::hold(const unsigned int, const int)
+  {}
+
+  template <int dim>
+  void
+  Formulation<dim>::release_holds()
+  {}
+
+  template <int dim>
+  unsigned int
+  Formulation<dim>::n_held() const
+  {
+    return 0;
+  }
+
+  template <int dim>
+  bool
+  Formulation<dim>::stabilizable() const
+  {
+    return true;
+  }
+
+  template <int dim>
+  unsigned int
+  Formulation<dim>::n_fallbacks() const
+  {
+    return 0;
+  }
+
+  template <int dim>
+  void
+  Formulation<dim>::distribute(const unsigned int   i,
+                               const double         lambda,
+                               std::vector<double> &nodal) const
+  {
+    nodal[i] += lambda;
+  }
+
+  template <int dim>
+  void
+  Formulation<dim>::accumulate_slip(const unsigned int    i,
+                                    const Tensor<1, dim> &normal,
+                                    const Tensor<1, dim> &relative)
+  {
+    slip_length[i] += (relative - (relative * normal) * normal).norm();
+    const auto tangents = contact_tangents<dim>(normal);
+    for (unsigned int a = 0; a < dim - 1; ++a)
+      slip_parts[i][a] += relative * tangents[a];
+  }
+
+  template <int dim>
+  Point<dim>
+  Formulation<dim>::position(const unsigned int i, const VectorType &U) const
+  {
+    const auto &node = (*nodes)[i];
+    Point<dim>  x    = node.X;
+    for (unsigned int d = 0; d < dim; ++d)
+      x[d] += U[node.dofs[d]];
+    return x;
+  }
+
+  template <int dim>
+  std::unique_ptr<Formulation<dim>>
+  make_formulation(const PairContext<dim>             &context,
+                   std::unique_ptr<RigidMaster<dim>>   master,
+                   std::unique_ptr<MasterSurface<dim>> surface)
+  {
+    const auto &p = context.parameters;
+    // The formulations by name: 'Formulation' and 'Sliding' of the pair.
+    const std::string name = p.formulation + ", " + p.sliding + " sliding";
+    if (name == "node to surface, finite sliding")
+      return std::make_unique<NodeToSurfaceFinite<dim>>(context,
+                                                        std::move(master),
+                                                        std::move(surface));
+    if (name == "node to surface, small sliding" ||
+        name == "surface to surface, small sliding")
+      return std::make_unique<SmallSlidingFormulation<dim>>(
+        context,
+        std::move(master),
+        std::move(surface),
+        p.formulation == "surface to surface");
+    throw InputError("Parameter '" + context.path + "/Formulation' = '" +
+                     p.formulation + "' with 'Sliding' = '" + p.sliding +
+                     "': glide has no such formulation; surface to surface "
+                     "needs 'Sliding = small'.");
+  }
+
+  template class Formulation<2>;
+  template class Formulation<3>;
+  template std::unique_ptr<Formulation<2>>
+  make_formulation<2>(const PairContext<2> &,
+                      std::unique_ptr<RigidMaster<2>>,
+                      std::unique_ptr<MasterSurface<2>>);
+  template std::unique_ptr<Formulation<3>>
+  make_formulation<3>(const PairContext<3> &,
+                      std::unique_ptr<RigidMaster<3>>,
+                      std::unique_ptr<MasterSurface<3>>);
+} // namespace glide

@@ -1,0 +1,308 @@
+#include <glide/contact/node_to_surface.h>
+#include <glide/contact/small_sliding.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
+#include <iterator>
+#include <sstream>
+
+namespace glide
+{
+  using namespace dealii;
+
+  template <int dim>
+  void
+  NodeToSurfaceFinite<dim>::setup(const std::vector<SlaveNode<dim>> &nodes)
+  {
+    Formulation<dim>::setup(nodes);
+    previous_position.clear();
+    for (const auto &node : nodes)
+      previous_position.push_back(node.X);
+    if (this->surface)
+      {
+        previous_projection.clear();
+        for (const auto &node : nodes)
+          previous_projection.push_back(
+            this->surface->project(node.X, 1.5 * node.size));
+        coupled.assign(nodes.size(), {});
+        cached.assign(nodes.size(), {});
+      }
+    release_holds();
+  }
+
+  template <int dim>
+  Constraint<dim>
+  NodeToSurfaceFinite<dim>::evaluate(const unsigned int i,
+                                     const VectorType  &U) const
+  {
+    Constraint<dim> s;
+    s.x     = this->position(i, U);
+    s.point = s.x;
+    if (this->surface)
+      {
+        const auto  start = std::chrono::steady_clock::now();
+        const auto &node  = (*this->nodes)[i];
+        const int   held  = held_piece[i];
+        auto       &c     = cached[i];
+        if (c.version != this->surface->version() || c.x != s.x ||
+            c.held != held)
+          {
+            c.projection = held >= 0 ?
+                             this->surface->project_onto(held, s.x) :
+                             this->surface->project(s.x, 1.5 * node.size);
+            c.version    = this->surface->version();
+            c.x          = s.x;
+            c.held       = held;
+          }
+        s.projection = c.projection;
+        this->searching += std::chrono::steady_clock::now() - start;
+        s.outcome = s.projection.found  ? Outcome::found :
+                    s.projection.failed ? Outcome::failed :
+                                          Outcome::beyond_end;
+        s.gap     = s.found() ? s.projection.gap :
+                                std::numeric_limits<double>::infinity();
+        s.normal  = s.projection.normal;
+      }
+    else
+      {
+        s.rigid  = this->master->project(s.x);
+        s.gap    = s.rigid.gap;
+        s.normal = s.rigid.normal;
+      }
+    s.tangents = contact_tangents<dim>(s.normal);
+    return s;
+  }
+
+  template <int dim>
+  void
+  NodeToSurfaceFinite<dim>::linearize(const unsigned int     i,
+                                      const Constraint<dim> &s,
+                                      const VectorType &,
+                                      Linearization &l) const
+  {
+    const auto &node = (*this->nodes)[i];
+    if (this->surface)
+      {
+        this->surface->linearize(s.projection, s.x, node.dofs, l);
+        return;
+      }
+    // Rigid master: g depends on the slave node only; dg/du = n and the
+    // force direction is n, with derivative d2g/du2 (curvature).
+    l.dofs.assign(node.dofs.begin(), node.dofs.end());
+    l.gap    = s.gap;
+    l.normal = s.normal;
+    l.dgap.reinit(dim);
+    l.force.reinit(dim);
+    l.dforce.reinit(dim, dim);
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        l.dgap(d)  = s.normal[d];
+        l.force(d) = s.normal[d];
+        for (unsigned int e = 0; e < dim; ++e)
+          l.dforce(d, e) = s.rigid.curvature[d][e];
+      }
+  }
+
+  template <int dim>
+  void
+  NodeToSurfaceFinite<dim>::couplings(
+    const unsigned int                    i,
+    const VectorType                     &U,
+    std::vector<types::global_dof_index> &dofs)
+  {
+    if (!this->surface)
+      return;
+    // The master nodes within one facet size of the slave node's position
+    // at U (the surface must be at U) ...
+    const auto &node = (*this->nodes)[i];
+    Point<dim>  x    = node.X;
+    if (U.size() > 0)
+      x = this->position(i, U);
+    coupled[i] = this->surface->nodes_near(x, this->surface->facet_size());
+    // ... and those of its projection now (onto the piece it is held on, if
+    // it is).
+    const int  held       = held_piece[i];
+    const auto projection = held >= 0 ?
+                              this->surface->project_onto(held, x) :
+                              this->surface->project(x, 1.5 * node.size);
+    if (projection.found)
+      {
+        const auto                used = this->surface->nodes_of(projection);
+        std::vector<unsigned int> all;
+        std::set_union(used.begin(),
+                       used.end(),
+                       coupled[i].begin(),
+                       coupled[i].end(),
+                       std::back_inserter(all));
+        coupled[i] = all;
+      }
+    for (const auto k : coupled[i])
+      for (unsigned int d = 0; d < dim; ++d)
+        dofs.push_back(this->surface->get_nodes()[k].dofs[d]);
+  }
+
+  template <int dim>
+  bool
+  NodeToSurfaceFinite<dim>::outside_pattern(const unsigned int     i,
+                                            const Constraint<dim> &s) const
+  {
+    if (!this->surface || !s.found())
+      return false;
+    const auto used = this->surface->nodes_of(s.projection);
+    return !std::includes(coupled[i].begin(),
+                          coupled[i].end(),
+                          used.begin(),
+                          used.end());
+  }
+
+  template <int dim>
+  int
+  NodeToSurfaceFinite<dim>::holdable_piece(const Constraint<dim> &s) const
+  {
+    // Only faceted deformable masters have corners to alternate at.
+    if (!this->surface || !s.found() ||
+        this->context.parameters.smoothing != 0.)
+      return -1;
+    return s.projection.piece;
+  }
+
+  template <int dim>
+  void
+  NodeToSurfaceFinite<dim>::hold(const unsigned int i, const int piece)
+  {
+    AssertIndexRange(i, held_piece.size());
+    held_piece[i] = piece;
+  }
+
+  template <int dim>
+  void
+  NodeToSurfaceFinite<dim>::release_holds()
+  {
+    held_piece.assign(this->nodes ? this->nodes->size() : 0, -1);
+  }
+
+  template <int dim>
+  unsigned int
+  NodeToSurfaceFinite<dim>::n_held() const
+  {
+    return std::count_if(held_piece.begin(), held_piece.end(), [](int p) {
+      return p >= 0;
+    });
+  }
+
+  template <int dim>
+  bool
+  NodeToSurfaceFinite<dim>::stabilizable() const
+  {
+    // Not for faceted deformable masters (f = 0): there the gap gradient of
+    // an open node jumps where its projection passes a vertex, and the
+    // springs along it made the faceted Hertz scene (hertz-2d-elastic.prm
+    // with f = 0) cut back 4 times where it needs none without them.
+    return !(this->surface && this->context.parameters.smoothing == 0.);
+  }
+
+  template <int dim>
+  void
+  NodeToSurfaceFinite<dim>::commit_step(const VectorType                   &U,
+                                        const std::vector<Constraint<dim>> &s,
+                                        const std::vector<bool> &closed,
+                                        const double             t_old,
+                                        const double             t_new)
+  {
+    const auto &nodes = *this->nodes;
+    const auto &p     = this->context.parameters;
+    const auto  comm  = this->context.comm;
+    if (this->surface)
+      {
+        // R16.3: slave nodes whose closest-point projection failed to
+        // converge are open at this state; name them.
+        std::vector<std::string> failed;
+        for (unsigned int i = 0; i < nodes.size(); ++i)
+          if (s[i].outcome == Outcome::failed)
+            {
+              std::ostringstream text;
+              text << "(" << nodes[i].X << ")";
+              failed.push_back(text.str());
+            }
+        this->context.report(
+          failed,
+          "warning: contact pair '" + p.name +
+            "': the projection onto the master did not converge for ",
+          " slave node(s), which count as open in this step (node positions "
+          "in the reference configuration)");
+        // How far the held gaps are from those of the free projection, and
+        // the held nodes from the end of their piece.
+        std::vector<std::string> held;
+        double                   difference = 0., overshoot = 0.;
+        for (unsigned int i = 0; i < held_piece.size(); ++i)
+          if (held_piece[i] >= 0)
+            {
+              const auto free =
+                this->surface->project(s[i].x, 1.5 * nodes[i].size);
+              if (free.found)
+                difference =
+                  std::max(difference, std::abs(free.gap - s[i].gap));
+              // The distance along the piece's tangent plane from the end
+              // of the piece to the node (0 inside the piece).
+              Tensor<1, dim> r = s[i].x - s[i].projection.point;
+              r -= (r * s[i].projection.normal) * s[i].projection.normal;
+              const double past = s[i].projection.vertex ? r.norm() : 0.;
+              overshoot         = std::max(overshoot, past);
+              std::ostringstream text;
+              text << "(" << nodes[i].X << ")";
+              held.push_back(text.str());
+            }
+        difference = Utilities::MPI::max(difference, comm);
+        overshoot  = Utilities::MPI::max(overshoot, comm);
+        std::ostringstream after;
+        after << " slave node(s) held on one master facet in this step (their "
+                 "projection alternated between facets meeting at a corner; "
+                 "the gap is measured to that facet's plane, at most "
+              << difference << " from the free projection's, at most "
+              << overshoot << " past the facet's end)";
+        this->context.report(
+          held, "contact pair '" + p.name + "': ", after.str());
+      }
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      {
+        if (closed[i] && this->surface)
+          {
+            // Relative to the master's material point that was under the
+            // slave node at the end of the last step (same piece and
+            // parameters, now in the current configuration).
+            const auto &old = previous_projection[i];
+            if (old.found)
+              {
+                const Point<dim> y =
+                  this->surface->evaluate(old.piece, old.xi).first;
+                this->accumulate_slip(i,
+                                      s[i].normal,
+                                      (s[i].x - previous_position[i]) -
+                                        (y - old.point));
+              }
+          }
+        else if (closed[i])
+          {
+            // The master point under the slave node at the start of the
+            // step, moved with the master to the end of the step.
+            this->master->set_time(t_old);
+            const Point<dim> y_old =
+              this->master->project(previous_position[i]).closest_point;
+            this->master->set_time(t_new);
+            const Point<dim> y_new = this->master->move(y_old, t_old, t_new);
+            this->accumulate_slip(i,
+                                  s[i].normal,
+                                  (s[i].x - previous_position[i]) -
+                                    (y_new - y_old));
+          }
+        previous_position[i] = s[i].x;
+        if (this->surface)
+          previous_projection[i] = s[i].projection;
+      }
+    (void)U;
+  }
+
+  template class NodeToSurfaceFinite<2>;
+  template class NodeToSurfaceFinite<3>;
+} // namespace glide
