@@ -1,4 +1,5 @@
 #include <glide/problem.h>
+#include <glide/solver/load_stepper.h>
 #include <glide/scene/input_error.h>
 #include <glide/solver/linear_solver.h>
 #include <glide/solver/nonlinear_solver.h>
@@ -441,23 +442,17 @@ namespace glide
       pcout << "  " << m << std::endl;
     prepare_output();
 
-    const double nominal = 1. / scene.load_stepping.number_of_steps;
-    double       dt      = nominal;
-    // cut_backs counts over the run (statistics), step_cut_backs within the
-    // current step (the limit of 'Maximum cut-backs').
-    unsigned int step = 0, cut_backs = 0, step_cut_backs = 0;
-    while (t < 1. - 1e-12)
+    LoadStepper stepper(scene.load_stepping);
+    while (stepper.running())
       {
-        const double t_old = t;
-        t                  = std::min(1., t + dt);
-        if (1. - t < 1e-3 * dt)
-          t = 1.;
+        const double t_old = stepper.time();
+        t                  = stepper.begin_step();
         VectorType U_trial = U;
         elasticity.constraints_at(t).distribute(U_trial);
         contact.set_time(t);
         contact.release_holds();
-        pcout << "Step " << step + 1 << ": load factor " << t << " (increment "
-              << t - t_old << ")" << std::endl;
+        pcout << "Step " << stepper.steps() + 1 << ": load factor " << t
+              << " (increment " << t - t_old << ")" << std::endl;
         Timer step_timer(comm);
         monitor.reset();
         if (scene.load_stepping.tangent_predictor)
@@ -466,31 +461,26 @@ namespace glide
         if (!result.converged)
           {
             pcout << "  step failed: " << result.message << std::endl;
+            stepper.reject(result.message);
             t = t_old;
-            if (step_cut_backs >= scene.load_stepping.maximum_cut_backs)
-              throw std::runtime_error("load step " + std::to_string(step + 1) +
-                                       " failed after " +
-                                       std::to_string(step_cut_backs) +
-                                       " cut-backs: " + result.message);
-            ++cut_backs;
-            ++step_cut_backs;
-            dt *= scene.load_stepping.cut_back_factor;
-            pcout << "  cutting back: new increment " << dt << " (cut-back "
-                  << step_cut_backs << " of at most "
-                  << scene.load_stepping.maximum_cut_backs << ")" << std::endl;
+            pcout << "  cutting back: new increment " << stepper.increment()
+                  << " (cut-back " << stepper.step_cut_backs()
+                  << " of at most " << scene.load_stepping.maximum_cut_backs
+                  << ")" << std::endl;
             continue;
           }
         U = U_trial;
-        ++step;
-        step_cut_backs = 0;
+        stepper.accept();
         pcout << "  converged in " << result.iterations
               << " iteration(s), scaled residual "
               << scientific(result.residual_norm) << std::endl;
-        postprocess(step, t_old, result, cut_backs, step_timer.wall_time());
-        // After a cut-back, grow the increment again towards the nominal one.
-        dt = std::min(nominal, 2 * dt);
+        postprocess(stepper.steps(),
+                    t_old,
+                    result,
+                    stepper.cut_backs(),
+                    step_timer.wall_time());
       }
-    finish(step, cut_backs, wall.wall_time());
+    finish(stepper.steps(), stepper.cut_backs(), wall.wall_time());
   }
 
   template <int dim>

@@ -1,0 +1,70 @@
+#include <glide/solver/load_stepper.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace glide
+{
+  LoadStepper::LoadStepper(const LoadSteppingParameters &parameters)
+    : parameters(parameters)
+    , nominal(1. / parameters.number_of_steps)
+    , dt_min(nominal * std::pow(parameters.cut_back_factor,
+                                parameters.maximum_cut_backs))
+    , dt(nominal)
+  {}
+
+  bool
+  LoadStepper::running() const
+  {
+    return t < 1. - 1e-12;
+  }
+
+  double
+  LoadStepper::begin_step()
+  {
+    t_new = std::min(1., t + dt);
+    if (1. - t_new < 1e-3 * dt)
+      t_new = 1.;
+    return t_new;
+  }
+
+  void
+  LoadStepper::accept()
+  {
+    t = t_new;
+    ++n_steps;
+    n_step_cut_backs = 0;
+    // After a cut-back, grow the increment again towards the nominal one.
+    dt = std::min(nominal, 2 * dt);
+  }
+
+  void
+  LoadStepper::reject(const std::string &reason)
+  {
+    t_new = t;
+    const std::string step = "load step " + std::to_string(n_steps + 1);
+    if (n_step_cut_backs >= parameters.maximum_cut_backs)
+      throw std::runtime_error(step + " failed after " +
+                               std::to_string(n_step_cut_backs) +
+                               " cut-backs: " + reason);
+    // The floor, with a margin for the rounding of repeated halving.
+    if (dt <= dt_min * (1. + 1e-9))
+      {
+        std::ostringstream text;
+        text << step << " failed at load factor " << t
+             << " with the smallest increment the scene allows ("
+             << dt_min
+             << " = 1 / 'Number of steps' x 'Cut-back factor' ^ 'Maximum "
+                "cut-backs'): "
+             << reason
+             << "; raise 'Load stepping/Maximum cut-backs' or 'Number of "
+                "steps' if smaller increments should be tried";
+        throw std::runtime_error(text.str());
+      }
+    ++n_cut_backs;
+    ++n_step_cut_backs;
+    dt = std::max(dt_min, dt * parameters.cut_back_factor);
+  }
+} // namespace glide
