@@ -1,7 +1,7 @@
 #include <glide/problem.h>
-#include <glide/solver/load_stepper.h>
 #include <glide/scene/input_error.h>
 #include <glide/solver/linear_solver.h>
+#include <glide/solver/load_stepper.h>
 #include <glide/solver/nonlinear_solver.h>
 
 #include <deal.II/base/conditional_ostream.h>
@@ -326,28 +326,35 @@ namespace glide
   NonlinearSolver::Result
   Problem<dim>::solve_step(VectorType &U_trial)
   {
-    // Attempts at one step, each a KINSOL solve of a fixed problem: full
-    // Newton steps; when nodes alternate between two facets of a faceted
-    // master, the solve stops there and full Newton goes on from that
-    // iterate with those nodes held on one facet (at most three times);
-    // after any other failure, or then, once with line search from the
-    // step's initial guess. Every attempt's iterations count.
+    // Attempts at one step, each a KINSOL solve of a fixed problem with
+    // the scene's strategy (full Newton steps in contact scenes); when
+    // nodes alternate between two facets of a faceted master, the solve
+    // stops there and goes on from that iterate with those nodes held on
+    // one facet (at most three times), whatever the strategy; after any
+    // other failure, or then, once with line search from the step's
+    // initial guess if the scene asks for that retry. Every attempt's
+    // iterations count.
     const VectorType U_start = U_trial;
     monitor.reset();
     stop_on_alternation = true;
     have_restart        = false;
     auto result =
       newton->solve(U_trial, callbacks, residual_scale, solution_scale);
-    unsigned int attempts = 1;
-    while (!result.converged && scene.nonlinear_solver.retry_with_line_search)
+    unsigned int attempts    = 1;
+    bool         damped_done = false;
+    while (!result.converged && !damped_done)
       {
         // Holding is a change of the problem, made between solves, and
         // reported in the log and the statistics (contact_<pair>_held).
         const auto holds = monitor.holds();
         const auto n_holds =
           Utilities::MPI::sum(static_cast<unsigned int>(holds.size()), comm);
-        contact.hold(holds);
         const bool again = n_holds > 0 && attempts < 4;
+        const bool retry =
+          again || scene.nonlinear_solver.retry_with_line_search;
+        if (!retry)
+          break;
+        contact.hold(holds);
         pcout << "  step failed"
               << (attempts == 1 ? " with full Newton steps" : "") << ": "
               << result.message << std::endl;
@@ -365,15 +372,16 @@ namespace glide
         have_restart = false;
         monitor.reset();
         // The last attempt runs to its end.
-        stop_on_alternation = again;
-        const auto first    = result;
-        result              = (again ? newton : damped)
+        stop_on_alternation =
+          again &&
+          (attempts + 1 < 4 || scene.nonlinear_solver.retry_with_line_search);
+        const auto first = result;
+        result           = (again ? newton : damped)
                    ->solve(U_trial, callbacks, residual_scale, solution_scale);
         result.iterations += first.iterations;
         result.linear_iterations += first.linear_iterations;
         ++attempts;
-        if (!again)
-          break;
+        damped_done = !again;
       }
     return result;
   }
@@ -464,9 +472,8 @@ namespace glide
             stepper.reject(result.message);
             t = t_old;
             pcout << "  cutting back: new increment " << stepper.increment()
-                  << " (cut-back " << stepper.step_cut_backs()
-                  << " of at most " << scene.load_stepping.maximum_cut_backs
-                  << ")" << std::endl;
+                  << " (cut-back " << stepper.step_cut_backs() << " of at most "
+                  << scene.load_stepping.maximum_cut_backs << ")" << std::endl;
             continue;
           }
         U = U_trial;

@@ -10,8 +10,8 @@ namespace glide
   LoadStepper::LoadStepper(const LoadSteppingParameters &parameters)
     : parameters(parameters)
     , nominal(1. / parameters.number_of_steps)
-    , dt_min(nominal * std::pow(parameters.cut_back_factor,
-                                parameters.maximum_cut_backs))
+    , dt_min(nominal *
+             std::pow(parameters.cut_back_factor, parameters.maximum_cut_backs))
     , dt(nominal)
   {}
 
@@ -43,7 +43,7 @@ namespace glide
   void
   LoadStepper::reject(const std::string &reason)
   {
-    t_new = t;
+    t_new                  = t;
     const std::string step = "load step " + std::to_string(n_steps + 1);
     if (n_step_cut_backs >= parameters.maximum_cut_backs)
       throw std::runtime_error(step + " failed after " +
@@ -54,8 +54,7 @@ namespace glide
       {
         std::ostringstream text;
         text << step << " failed at load factor " << t
-             << " with the smallest increment the scene allows ("
-             << dt_min
+             << " with the smallest increment the scene allows (" << dt_min
              << " = 1 / 'Number of steps' x 'Cut-back factor' ^ 'Maximum "
                 "cut-backs'): "
              << reason

@@ -116,7 +116,10 @@ namespace glide
                       Patterns::Integer(0, 30),
                       "How often one load step may be cut back and retried "
                       "before the run stops (statistics.csv counts the "
-                      "cut-backs of the whole run).");
+                      "cut-backs of the whole run). The increment also "
+                      "never falls below 1 / 'Number of steps' x 'Cut-back "
+                      "factor' ^ 'Maximum cut-backs': a step that fails "
+                      "there ends the run.");
     prm.declare_entry("Cut-back factor",
                       "0.5",
                       Patterns::Double(0.01, 0.9),

@@ -27,7 +27,7 @@ namespace
 
 TEST(LoadStepper, NominalStepsEndExactlyAtOne)
 {
-  LoadStepper stepper(parameters(3, 4, 0.5));
+  LoadStepper  stepper(parameters(3, 4, 0.5));
   unsigned int n = 0;
   while (stepper.running())
     {

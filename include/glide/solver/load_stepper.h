@@ -97,7 +97,6 @@ namespace glide
     double                       t     = 0.;
     double                       t_new = 0.;
     double                       dt;
-    unsigned int                 n_steps = 0, n_cut_backs = 0,
-                 n_step_cut_backs        = 0;
+    unsigned int n_steps = 0, n_cut_backs = 0, n_step_cut_backs = 0;
   };
 } // namespace glide
