@@ -3,6 +3,7 @@
 #include <glide/contact/active_set_monitor.h>
 #include <glide/contact/contact.h>
 #include <glide/mechanics/elasticity.h>
+#include <glide/output/output_directory.h>
 #include <glide/output/statistics.h>
 #include <glide/output/vtu_writer.h>
 #include <glide/scene/scene.h>
@@ -109,6 +110,7 @@ namespace glide
     VectorType                       residual_scale, solution_scale;
     ActiveSetMonitor<dim>            monitor;
     std::string                      directory;
+    std::unique_ptr<OutputDirectory> output;
     std::unique_ptr<Statistics>      statistics;
     std::unique_ptr<VtuWriter<dim>>  vtu;
     VectorType                       U;

@@ -1,6 +1,8 @@
 #include <glide/material/material.h>
 #include <glide/scene/input_error.h>
 
+#include <deal.II/base/utilities.h>
+
 namespace glide
 {
   using namespace dealii;
@@ -45,13 +47,36 @@ namespace glide
     youngs_modulus = prm.get_double("Young's modulus");
     poissons_ratio = prm.get_double("Poisson's ratio");
     prm.leave_subsection();
+    // 1e-100 <= E <= 1e100 in any unit system: stiffness entries (E times
+    // lengths) and their products in the direct solver's factorization
+    // must stay far inside double precision's range (1e+-308); outside it
+    // the solve overflows into infinities and NaN.
+    constexpr double smallest_modulus = 1e-100, largest_modulus = 1e100;
     require(youngs_modulus > 0.,
             "Parameter '" + path +
               "/Material/Young's modulus' must be greater than zero.");
-    require(poissons_ratio > -1. && poissons_ratio < 0.5,
-            "Parameter '" + path +
-              "/Material/Poisson's ratio' must satisfy -1 < nu < 0.5; use "
-              "for example 0.49 for a nearly incompressible material.");
+    require(youngs_modulus >= smallest_modulus &&
+              youngs_modulus <= largest_modulus,
+            "Parameter '" + path + "/Material/Young's modulus' = " +
+              dealii::Utilities::to_string(youngs_modulus) +
+              " is outside 1e-100 <= E <= 1e100, where the stiffness "
+              "entries and their products in the solver overflow or "
+              "underflow double precision. Choose units in which the "
+              "moduli are moderate numbers (e.g. MPa and mm for steel: "
+              "210000).");
+    // nu = 0.5 is incompressible; lambda / mu = 2 nu / (1 - 2 nu) is about
+    // 5000 at nu = 0.4999: beyond, displacement elements lock completely
+    // and the Newton systems lose the digits the tolerance needs (the
+    // load steps fail). Symmetrically, mu / K grows without bound as
+    // nu -> -1.
+    require(poissons_ratio >= -0.9999 && poissons_ratio <= 0.4999,
+            "Parameter '" + path + "/Material/Poisson's ratio' = " +
+              dealii::Utilities::to_string(poissons_ratio) +
+              " must satisfy -0.9999 <= nu <= 0.4999: closer to 0.5 the "
+              "material is (nearly) incompressible, lambda/mu = 2 nu/(1 - "
+              "2 nu) exceeds 5000, displacement elements lock and the "
+              "solve fails; use for example 0.49 for rubber (this "
+              "displacement formulation has no incompressible mode).");
   }
 
 

@@ -1,3 +1,4 @@
+#include <glide/mechanics/checked_function.h>
 #include <glide/mechanics/elasticity.h>
 #include <glide/mechanics/rotation.h>
 #include <glide/scene/input_error.h>
@@ -6,10 +7,13 @@
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <cmath>
+#include <iomanip>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -29,6 +33,18 @@ namespace glide
         message = m;
     message = Utilities::MPI::broadcast(comm, message, 0);
     throw std::runtime_error(message);
+  }
+
+  void
+  throw_input_error_on_any_process(const std::string &failure, MPI_Comm comm)
+  {
+    if (Utilities::MPI::max(failure.empty() ? 0 : 1, comm) == 0)
+      return;
+    std::string message;
+    for (const auto &m : Utilities::MPI::gather(comm, failure, 0))
+      if (message.empty() && !m.empty())
+        message = m;
+    throw InputError(Utilities::MPI::broadcast(comm, message, 0));
   }
 
   namespace
@@ -70,7 +86,8 @@ namespace glide
                                   const unsigned int n_components,
                                   const std::string &parameter) const
   {
-    auto              f = std::make_unique<FunctionParser<dim>>(n_components);
+    auto f =
+      std::make_unique<CheckedFunction<dim>>(n_components, parameter, expression);
     const std::string vars = (dim == 2 ? "x,y,t" : "x,y,z,t");
     try
       {
@@ -80,6 +97,11 @@ namespace glide
                       true);
         Vector<double> v(n_components);
         f->vector_value(Point<dim>(), v); // muparser compiles lazily
+      }
+    catch (const InputError &)
+      {
+        // Not finite at the origin, t = 0: the value's own message.
+        throw;
       }
     catch (const ExceptionBase &e)
       {
@@ -433,6 +455,11 @@ namespace glide
     AffineConstraints<double> c;
     c.reinit(relevant_total);
     DoFTools::make_hanging_node_constraints(dof_handler, c);
+    // A function of the scene that is not finite at a point of this
+    // process: every process must hear of it (collective callers).
+    std::string input_failure;
+    try
+    {
     for (const auto &d : dirichlet)
       {
         const auto         &bc   = *d.parameters;
@@ -545,6 +572,12 @@ namespace glide
                     c.add_line(dofs[i]);
               }
       }
+    }
+    catch (const InputError &e)
+    {
+      input_failure = e.what();
+    }
+    throw_input_error_on_any_process(input_failure, comm);
     c.close();
     return c;
   }
@@ -637,10 +670,11 @@ namespace glide
 
     // A failure on one process (an inverted element) must not leave the
     // others waiting in compress(): finish the loop, then agree.
-    std::string failure;
+    std::string failure, input_failure;
     for (const auto &cell : dof_handler.active_cell_iterators())
+      try
       {
-        if (!cell->is_locally_owned())
+        if (!cell->is_locally_owned() || !input_failure.empty())
           continue;
         fe_values.reinit(cell);
         cell_matrix   = 0;
@@ -770,10 +804,17 @@ namespace glide
         else
           constraints.distribute_local_to_global(cell_matrix, dofs, *J);
       }
+      catch (const InputError &e)
+      {
+        // A function of the scene that is not finite here: finish the
+        // loop (the other processes wait in compress()), then agree.
+        input_failure = e.what();
+      }
 
     // Concentrated forces at vertices.
-    if (F)
+    if (F && input_failure.empty())
       for (const auto &pf : point_forces)
+        try
         {
           pf.function->set_time(t);
           for (const auto &[node_dofs, x] : pf.nodes)
@@ -787,11 +828,16 @@ namespace glide
               constraints.distribute_local_to_global(f, idx, *F);
             }
         }
+        catch (const InputError &e)
+        {
+          input_failure = e.what();
+        }
 
     if (F)
       F->compress(VectorOperation::add);
     if (J)
       J->compress(VectorOperation::add);
+    throw_input_error_on_any_process(input_failure, comm);
     throw_on_any_process(failure, comm);
   }
 
@@ -957,6 +1003,364 @@ namespace glide
       e.push_back("manufactured solution (" + scene.manufactured_solution +
                   ")");
     return e;
+  }
+
+
+  namespace
+  {
+    /// Numbers for messages: short, and -0 printed as 0.
+    std::string
+    short_number(const double x)
+    {
+      std::ostringstream s;
+      s << std::setprecision(4) << (std::abs(x) < 1e-12 ? 0. : x);
+      return s.str();
+    }
+
+    /**
+     * A basis of the null space of the symmetric positive semi-definite
+     * matrix @p G (at most 6 x 6), from its reduced row echelon form with
+     * relative pivot tolerance @p tolerance: one vector per free column,
+     * with 1 there. Columns are eliminated in their order, so later
+     * columns (rotations) become the free ones and each free vector names
+     * one rotation together with the translations that make it a rotation
+     * about a point; a zero column (a translation nothing stops) gives a
+     * pure translation.
+     */
+    std::vector<std::vector<double>>
+    null_space(FullMatrix<double> G, const double tolerance)
+    {
+      const unsigned int n     = G.m();
+      double             scale = 0;
+      for (unsigned int i = 0; i < n; ++i)
+        scale = std::max(scale, std::abs(G(i, i)));
+      std::vector<int> pivot_of_column(n, -1);
+      unsigned int     row = 0;
+      for (unsigned int col = 0; col < n && row < n; ++col)
+        {
+          unsigned int best = row;
+          for (unsigned int r = row; r < n; ++r)
+            if (std::abs(G(r, col)) > std::abs(G(best, col)))
+              best = r;
+          if (!(std::abs(G(best, col)) > tolerance * scale))
+            continue;
+          for (unsigned int k = 0; k < n; ++k)
+            std::swap(G(row, k), G(best, k));
+          const double p = G(row, col);
+          for (unsigned int k = 0; k < n; ++k)
+            G(row, k) /= p;
+          for (unsigned int r = 0; r < n; ++r)
+            if (r != row && G(r, col) != 0.)
+              {
+                const double f = G(r, col);
+                for (unsigned int k = 0; k < n; ++k)
+                  G(r, k) -= f * G(row, k);
+              }
+          pivot_of_column[col] = row++;
+        }
+      std::vector<std::vector<double>> basis;
+      for (unsigned int free = 0; free < n; ++free)
+        if (pivot_of_column[free] < 0)
+          {
+            std::vector<double> v(n, 0.);
+            v[free] = 1.;
+            for (unsigned int col = 0; col < n; ++col)
+              if (pivot_of_column[col] >= 0)
+                v[col] = -G(pivot_of_column[col], free);
+            basis.push_back(v);
+          }
+      return basis;
+    }
+  } // namespace
+
+  template <int dim>
+  std::vector<std::vector<std::string>>
+  Elasticity<dim>::free_motions() const
+  {
+    // The rigid-body motions of a body: translations, and rotations
+    // about its center c scaled by its size L (so that every mode is of
+    // order 1 on the body): 2D x, y, z-rotation; axisymmetric only the
+    // axial translation (a radial "translation" strains the hoops); 3D x,
+    // y, z and rotations about x, y, z. A motion is free if no Dirichlet
+    // constraint (fixed, displacement, symmetry, u_r = 0 on the axis, a
+    // meshed rigid body) acts against it: the null space of the Gram
+    // matrix G = sum over the body's constrained vertex DoFs of m m^T,
+    // with m the values of the modes there.
+    const unsigned int n_bodies = scene.bodies.size();
+    const unsigned int n_modes  = axisymmetric ? 1 : dim * (dim + 1) / 2;
+    std::vector<double> lower(n_bodies * dim,
+                              std::numeric_limits<double>::max()),
+      upper(n_bodies * dim, -std::numeric_limits<double>::max());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const auto v : cell->vertex_indices())
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const unsigned int k = cell->material_id() * dim + d;
+              lower[k]             = std::min(lower[k], cell->vertex(v)[d]);
+              upper[k]             = std::max(upper[k], cell->vertex(v)[d]);
+            }
+    Utilities::MPI::min(lower, comm, lower);
+    Utilities::MPI::max(upper, comm, upper);
+
+    const auto mode_values = [&](const unsigned int b,
+                                 const Point<dim>  &x,
+                                 const unsigned int c) {
+      std::vector<double> m(n_modes, 0.);
+      if (axisymmetric)
+        {
+          m[0] = (c == 1);
+          return m;
+        }
+      Tensor<1, dim> r;
+      double         L = 0;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double center = 0.5 * (lower[b * dim + d] + upper[b * dim + d]);
+          r[d]                = x[d] - center;
+          L = std::max(L, 0.5 * (upper[b * dim + d] - lower[b * dim + d]));
+        }
+      r /= (L > 0 ? L : 1.);
+      m[c] = 1.;
+      if (dim == 2)
+        m[2] = (c == 0 ? -r[1] : r[0]);
+      else
+        {
+          // omega x r for omega = e_x, e_y, e_z
+          const unsigned int next[3] = {1, 2, 0}, prev[3] = {2, 0, 1};
+          for (unsigned int a = 0; a < 3; ++a)
+            {
+              if (c == next[a])
+                m[dim + a] = -r[prev[a]];
+              else if (c == prev[a])
+                m[dim + a] = r[next[a]];
+            }
+        }
+      return m;
+    };
+
+    std::vector<double> gram(n_bodies * n_modes * n_modes, 0.);
+    std::vector<bool>   seen(owned.n_elements(), false);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const auto v : cell->vertex_indices())
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              const auto i = cell->vertex_dof_index(v, c);
+              if (!owned.is_element(i) || seen[owned.index_within_set(i)])
+                continue;
+              seen[owned.index_within_set(i)] = true;
+              if (!homogeneous_constraints.is_constrained(i))
+                continue;
+              const auto *entries =
+                homogeneous_constraints.get_constraint_entries(i);
+              if (entries && !entries->empty())
+                continue; // a hanging node, not a support
+              const auto m = mode_values(cell->material_id(), cell->vertex(v), c);
+              double *G = &gram[cell->material_id() * n_modes * n_modes];
+              for (unsigned int a = 0; a < n_modes; ++a)
+                for (unsigned int b = 0; b < n_modes; ++b)
+                  G[a * n_modes + b] += m[a] * m[b];
+            }
+    Utilities::MPI::sum(gram, comm, gram);
+
+    const char *axis[] = {"x", "y", "z"};
+    std::vector<std::vector<std::string>> result(n_bodies);
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      {
+        if (scene.bodies[b].rigid)
+          continue;
+        FullMatrix<double> G(n_modes, n_modes);
+        for (unsigned int i = 0; i < n_modes; ++i)
+          for (unsigned int j = 0; j < n_modes; ++j)
+            G(i, j) = gram[(b * n_modes + i) * n_modes + j];
+        // Relative pivot tolerance: a single constrained vertex stops a
+        // translation with a pivot of order 1; rounding is 1e-16.
+        for (const auto &v : null_space(G, 1e-10))
+          {
+            if (axisymmetric)
+              {
+                result[b].push_back("translation along the axis (y)");
+                continue;
+              }
+            Point<dim> center;
+            double     L = 0;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                center[d] = 0.5 * (lower[b * dim + d] + upper[b * dim + d]);
+                L = std::max(L, 0.5 * (upper[b * dim + d] - lower[b * dim + d]));
+              }
+            L = (L > 0 ? L : 1.);
+            Tensor<1, dim> t;
+            for (unsigned int d = 0; d < dim; ++d)
+              t[d] = v[d];
+            Tensor<1, 3> w; // the rotation rate, physical units
+            for (unsigned int a = dim; a < n_modes; ++a)
+              w[dim == 2 ? 2 : a - dim] = v[a] / L;
+            if (w.norm() * L < 1e-8 * t.norm())
+              {
+                t /= t.norm();
+                unsigned int nonzero = 0, along = 0;
+                for (unsigned int d = 0; d < dim; ++d)
+                  if (std::abs(t[d]) > 1e-8)
+                    {
+                      ++nonzero;
+                      along = d;
+                    }
+                if (nonzero == 1)
+                  result[b].push_back(std::string("translation in ") +
+                                      axis[along]);
+                else
+                  {
+                    std::string direction;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      direction += (d ? ", " : "") + short_number(t[d]);
+                    result[b].push_back("translation along (" + direction +
+                                        ")");
+                  }
+                continue;
+              }
+            // The points that do not move: t + w x (x - c) = 0, i.e.
+            // x = c + (w x t) / |w|^2 on the axis along w.
+            Tensor<1, 3> t3;
+            for (unsigned int d = 0; d < dim; ++d)
+              t3[d] = t[d];
+            const Tensor<1, 3> p = cross_product_3d(w, t3) / (w * w);
+            std::string        point;
+            for (unsigned int d = 0; d < dim; ++d)
+              point += (d ? ", " : "") + short_number(center[d] + p[d]);
+            if (dim == 2)
+              result[b].push_back("rotation about z around (" + point + ")");
+            else
+              {
+                const Tensor<1, 3> n = w / w.norm();
+                std::string        direction;
+                for (unsigned int d = 0; d < 3; ++d)
+                  direction += (d ? ", " : "") + short_number(n[d]);
+                result[b].push_back("rotation about the axis along (" +
+                                    direction + ") through (" + point + ")");
+              }
+          }
+      }
+    return result;
+  }
+
+  template <int dim>
+  void
+  Elasticity<dim>::check_inputs()
+  {
+    const std::string file = "In scene file '" + scene.file + "': ";
+
+    // Bodies in a contact pair: contact may hold them (if it closes).
+    std::set<std::string> in_contact;
+    bool                  node_set_slave = false;
+    for (const auto &cp : scene.contact_pairs)
+      for (const auto &list : {cp.slave, cp.master})
+        for (const auto &surface : Utilities::split_string_list(list, ','))
+          {
+            if (scene_node_sets.count(surface))
+              node_set_slave = true;
+            const auto dot = surface.find('.');
+            if (dot != std::string::npos)
+              in_contact.insert(surface.substr(0, dot));
+          }
+    const auto motions = free_motions();
+    holding_hints.clear();
+    for (unsigned int b = 0; b < scene.bodies.size(); ++b)
+      {
+        if (motions[b].empty())
+          continue;
+        std::string list;
+        for (unsigned int i = 0; i < motions[b].size(); ++i)
+          list += (i == 0 ? "" : i + 1 == motions[b].size() ? " and " : ", ") +
+                  motions[b][i];
+        const std::string &name = scene.bodies[b].name;
+        if (in_contact.count(name) || node_set_slave)
+          {
+            holding_hints.push_back(
+              "body '" + name + "' is held against its " + list +
+              " only by contact: while that contact is open nothing holds "
+              "it, and the Newton systems are singular. Let the contact "
+              "close from the first load step (start in contact or move "
+              "the body into it by a prescribed displacement), or add a "
+              "boundary condition that stops these motions (e.g. a "
+              "symmetry condition).");
+            continue;
+          }
+        throw InputError(
+          file + "Body '" + name + "' is not held: nothing stops its " +
+          list +
+          " (no fixed, displacement or symmetry condition acts against "
+          "them, and the body is in no contact pair), so the equilibrium "
+          "has no unique solution. Add a boundary condition that holds it, "
+          "e.g. 'Type = fixed' on one surface of '" +
+          name + "', or symmetry conditions.");
+      }
+
+    // Every function of the scene is finite at the first and the last
+    // load factor (CheckedFunction throws otherwise), before anything is
+    // written; the values in between are checked as they are used.
+    const double first = 1. / scene.load_stepping.number_of_steps;
+    for (const double t : {first, 1.})
+      {
+        constraints_at(t);
+        VectorType U(owned_total, comm), F(owned_total, comm);
+        residual(U, t, F);
+      }
+
+    // Stiffnesses that double precision cannot resolve together.
+    double E_min = std::numeric_limits<double>::infinity(), E_max = 0;
+    std::string soft, stiff;
+    for (const auto &b : scene.bodies)
+      if (!b.rigid)
+        {
+          if (b.material.youngs_modulus < E_min)
+            {
+              E_min = b.material.youngs_modulus;
+              soft  = b.name;
+            }
+          if (b.material.youngs_modulus > E_max)
+            {
+              E_max = b.material.youngs_modulus;
+              stiff = b.name;
+            }
+        }
+    // 1e12: the forces in the softest body are then 1e-12 of those in the
+    // stiffest; with 16 digits in double precision the solver tolerance
+    // (1e-8 and finer) can no longer be met for both. Make the stiff body
+    // rigid instead ('Rigid body/Rigid = true').
+    constexpr double maximum_stiffness_ratio = 1e12;
+    require(!(E_max > maximum_stiffness_ratio * E_min),
+            file + "Young's moduli of 'Body " + stiff + "' (" +
+              short_number(E_max) + ") and 'Body " + soft + "' (" +
+              short_number(E_min) + ") differ by more than a factor of " +
+              short_number(maximum_stiffness_ratio) +
+              ": double precision cannot resolve both bodies' forces. Make "
+              "the stiff body rigid ('Rigid body/Rigid = true') instead.");
+    const double L = mesh.scene_size();
+    for (const auto &cp : scene.contact_pairs)
+      if (cp.enforcement == Enforcement::penalty && cp.penalty_stiffness > 0)
+        require(!(cp.penalty_stiffness * L >
+                  maximum_stiffness_ratio * (E_max > 0 ? E_max : E_min)),
+                file + "Parameter 'Contact pair " + cp.name +
+                  "/Penalty stiffness' = " +
+                  short_number(cp.penalty_stiffness) +
+                  " is more than " + short_number(maximum_stiffness_ratio) +
+                  " times the stiffness of the bodies (Young's modulus " +
+                  short_number(E_max) + " / scene size " + short_number(L) +
+                  "): double precision cannot resolve the bodies next to "
+                  "it. Use 0 (automatic), or hard contact ('Enforcement = "
+                  "hard').");
+  }
+
+  template <int dim>
+  std::string
+  Elasticity<dim>::holding_hint() const
+  {
+    std::string hint;
+    for (const auto &h : holding_hints)
+      hint += "\nNote: " + h;
+    return hint;
   }
 
   template class Elasticity<2>;
