@@ -1,11 +1,23 @@
 #include <glide/material/material.h>
 #include <glide/scene/input_error.h>
 
-#include <deal.II/base/utilities.h>
+#include <iomanip>
+#include <sstream>
 
 namespace glide
 {
   using namespace dealii;
+
+  namespace
+  {
+    std::string
+    short_number(const double x)
+    {
+      std::ostringstream s;
+      s << std::setprecision(12) << x;
+      return s.str();
+    }
+  } // namespace
 
   double
   MaterialParameters::lambda() const
@@ -58,7 +70,7 @@ namespace glide
     require(youngs_modulus >= smallest_modulus &&
               youngs_modulus <= largest_modulus,
             "Parameter '" + path + "/Material/Young's modulus' = " +
-              dealii::Utilities::to_string(youngs_modulus) +
+              short_number(youngs_modulus) +
               " is outside 1e-100 <= E <= 1e100, where the stiffness "
               "entries and their products in the solver overflow or "
               "underflow double precision. Choose units in which the "
@@ -71,7 +83,7 @@ namespace glide
     // nu -> -1.
     require(poissons_ratio >= -0.9999 && poissons_ratio <= 0.4999,
             "Parameter '" + path + "/Material/Poisson's ratio' = " +
-              dealii::Utilities::to_string(poissons_ratio) +
+              short_number(poissons_ratio) +
               " must satisfy -0.9999 <= nu <= 0.4999: closer to 0.5 the "
               "material is (nearly) incompressible, lambda/mu = 2 nu/(1 - "
               "2 nu) exceeds 5000, displacement elements lock and the "

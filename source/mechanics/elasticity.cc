@@ -95,13 +95,11 @@ namespace glide
                       Utilities::split_string_list(expression, ';'),
                       {{"pi", numbers::PI}},
                       true);
-        Vector<double> v(n_components);
-        f->vector_value(Point<dim>(), v); // muparser compiles lazily
-      }
-    catch (const InputError &)
-      {
-        // Not finite at the origin, t = 0: the value's own message.
-        throw;
+        // muparser compiles lazily. The unchecked value: the origin need
+        // not be a point of the body (the values are checked where they
+        // are used).
+        for (unsigned int c = 0; c < n_components; ++c)
+          f->FunctionParser<dim>::value(Point<dim>(), c);
       }
     catch (const ExceptionBase &e)
       {

@@ -80,7 +80,7 @@ namespace glide
     }
 
     std::string
-    quoted(const fs::path &p)
+    in_quotes(const fs::path &p)
     {
       return "'" + p.string() + "'";
     }
@@ -148,13 +148,13 @@ namespace glide
           std::error_code ec;
           if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
             throw OutputError(
-              "The output directory " + quoted(dir) +
+              "The output directory " + in_quotes(dir) +
               " exists and is not a directory; choose another "
               "'Output/Directory' or 'Scene name'.");
           const bool created = fs::create_directories(dir, ec);
           if (ec)
             throw OutputError("Cannot create the output directory " +
-                              quoted(dir) + ": " + advice(ec.value()) +
+                              in_quotes(dir) + ": " + advice(ec.value()) +
                               ". Check 'Output/Directory'.");
 
           // What an earlier run wrote here.
@@ -184,11 +184,11 @@ namespace glide
                 }
               if (ec)
                 throw OutputError("Cannot read the output directory " +
-                                  quoted(dir) + ": " + advice(ec.value()) +
+                                  in_quotes(dir) + ": " + advice(ec.value()) +
                                   ".");
               if (!foreign.empty())
                 throw OutputError(
-                  "The output directory " + quoted(dir) +
+                  "The output directory " + in_quotes(dir) +
                   " already holds files that glide did not write (e.g. '" +
                   foreign.front() +
                   "'), and glide never deletes or overwrites a file it did "
@@ -207,14 +207,14 @@ namespace glide
                   fs::remove(p, ec);
                 if (ec)
                   throw OutputError("Cannot remove the earlier result " +
-                                    quoted(p) + ": " + advice(ec.value()) +
+                                    in_quotes(p) + ": " + advice(ec.value()) +
                                     ".");
               }
           manifest = {staging_name};
           write_manifest();
           fs::create_directory(staging_directory, ec);
           if (ec)
-            throw OutputError("Cannot create " + quoted(staging_directory) +
+            throw OutputError("Cannot create " + in_quotes(staging_directory) +
                               ": " + advice(ec.value()) + ".");
         }
       catch (const OutputError &e)
@@ -250,14 +250,14 @@ namespace glide
           std::error_code ec;
           fs::remove(tmp, ec);
           throw OutputError("Cannot write in the output directory " +
-                            quoted(dir) + " (the file " + quoted(tmp) +
+                            in_quotes(dir) + " (the file " + in_quotes(tmp) +
                             "): " + advice(error) + ".");
         }
     }
     std::error_code ec;
     fs::rename(tmp, dir / manifest_name, ec);
     if (ec)
-      throw OutputError("Cannot write " + quoted(dir / manifest_name) + ": " +
+      throw OutputError("Cannot write " + in_quotes(dir / manifest_name) + ": " +
                         advice(ec.value()) + ".");
   }
 
@@ -274,8 +274,8 @@ namespace glide
         std::error_code ec;
         if (fs::exists(fs::symlink_status(dir / (file + suffix), ec)))
           throw OutputError(
-            "The output directory " + quoted(dir) + " holds " +
-            quoted(file + suffix) +
+            "The output directory " + in_quotes(dir) + " holds " +
+            in_quotes(file + suffix) +
             ", which glide did not write; glide never overwrites a file it "
             "did not write. Move it away, or choose another 'Scene name' or "
             "'Output/Directory'.");
@@ -371,14 +371,14 @@ namespace glide
     if (error != 0)
       {
         fs::remove(tmp, ec);
-        throw OutputError("Cannot write " + quoted(target) + ": " +
+        throw OutputError("Cannot write " + in_quotes(target) + ": " +
                           advice(error) + ".");
       }
     std::string message;
     if (!is_complete(tmp.string(), kind_of(file), message))
       {
         fs::remove(tmp, ec);
-        throw OutputError("Writing " + quoted(target) + " failed: it " +
+        throw OutputError("Writing " + in_quotes(target) + " failed: it " +
                           message + "." +
                           (disk_full(directory) ?
                              " The disk is full: free space there or choose "
@@ -400,7 +400,7 @@ namespace glide
         std::error_code ignored;
         fs::remove(from, ignored);
         throw OutputError("Cannot rename '" + from + "' to " +
-                          quoted(fs::path(directory) / file) + ": " +
+                          in_quotes(fs::path(directory) / file) + ": " +
                           advice(ec.value()) + ".");
       }
   }
@@ -427,7 +427,7 @@ namespace glide
       {
         std::error_code ec;
         fs::remove(tmp, ec);
-        throw OutputError("Writing " + quoted(fs::path(directory) / file) +
+        throw OutputError("Writing " + in_quotes(fs::path(directory) / file) +
                           " failed: it " + message + "." +
                           (disk_full(directory) ?
                              " The disk is full: free space there or choose "
@@ -464,7 +464,7 @@ namespace glide
               const std::string f = e.path().filename().string();
               if (ends_with(f, ".tmp"))
                 throw OutputError(
-                  "Writing " + quoted(fs::path(directory) / f) +
+                  "Writing " + in_quotes(fs::path(directory) / f) +
                   " failed (its temporary file was left behind)" +
                   (disk_full(directory) ? "; the disk is full: free space "
                                           "there or choose another "
@@ -473,13 +473,13 @@ namespace glide
               (ends_with(f, ".pvd") ? indexes : data).push_back(f);
             }
           if (ec)
-            throw OutputError("Cannot read " + quoted(staging_directory) +
+            throw OutputError("Cannot read " + in_quotes(staging_directory) +
                               ": " + advice(ec.value()) + ".");
           std::string message;
           for (const auto &f : data)
             if (!is_complete(staging_directory + "/" + f, kind_of(f), message))
               throw OutputError("Writing " +
-                                quoted(fs::path(directory) / f) +
+                                in_quotes(fs::path(directory) / f) +
                                 " failed: it " + message + ". " +
                                 (disk_full(directory) ?
                                    "The disk is full: free space there or "
@@ -488,7 +488,7 @@ namespace glide
           for (const auto &f : indexes)
             if (!is_complete(staging_directory + "/" + f, kind_of(f), message))
               throw OutputError("Writing " +
-                                quoted(fs::path(directory) / f) +
+                                in_quotes(fs::path(directory) / f) +
                                 " failed: it " + message + ".");
           // The writers of staged files do not check their streams: a
           // disk that is full now may have cut one of them short.
@@ -508,7 +508,7 @@ namespace glide
                          ec);
               if (ec)
                 throw OutputError("Cannot move " + f + " into " +
-                                  quoted(directory) + ": " +
+                                  in_quotes(directory) + ": " +
                                   advice(ec.value()) + ".");
             }
           // The indexes: first all written and checked under their

@@ -45,7 +45,9 @@ namespace glide
           s << "Parameter '" << parameter << "' = '" << expression << "'";
           if (this->n_components > 1)
             s << ": component " << component + 1;
-          s << " evaluates to " << v << " at (";
+          s << " evaluates to "
+            << (std::isnan(v) ? "NaN" : v > 0 ? "+infinity" : "-infinity")
+            << " at (";
           for (unsigned int d = 0; d < dim; ++d)
             s << (d ? ", " : "") << p[d];
           s << "), t = " << this->get_time()
