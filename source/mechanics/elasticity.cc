@@ -186,8 +186,8 @@ namespace glide
     for (unsigned int i = 0; i < points.size(); ++i)
       {
         std::ostringstream p;
-        for (const auto c : points[i])
-          p << (&c == &points[i][0] ? "" : ", ") << c;
+        for (unsigned int d = 0; d < points[i].size(); ++d)
+          p << (d ? ", " : "") << points[i][d];
         require(Utilities::MPI::sum(found[i], comm) > 0,
                 "Node set '" + surface + "': no mesh vertex within " +
                   std::to_string(tol) + " of the point (" + p.str() +

@@ -111,32 +111,6 @@ namespace glide
 
 
 
-  bool
-  OutputDirectory::is_glide_name(const std::string &file)
-  {
-    std::string f = file;
-    if (ends_with(f, ".tmp"))
-      f.resize(f.size() - 4);
-    if (f == "statistics.csv" || f == "timings.csv" || f == manifest_name ||
-        f == staging_name || ends_with(f, ".pvd"))
-      return true;
-    // <name>-NNNN.vtu, contact-<pair>-NNNN.csv
-    for (const std::string extension : {".vtu", ".csv"})
-      if (ends_with(f, extension) && f.size() > extension.size() + 5)
-        {
-          const std::string number =
-            f.substr(f.size() - extension.size() - 5, 5);
-          if (number[0] == '-' &&
-              std::all_of(number.begin() + 1, number.end(), [](char c) {
-                return c >= '0' && c <= '9';
-              }))
-            return extension == ".vtu" || f.rfind("contact-", 0) == 0;
-        }
-    return false;
-  }
-
-
-
   void
   OutputDirectory::prepare()
   {
@@ -174,28 +148,24 @@ namespace glide
             }
           else if (!created)
             {
-              std::vector<std::string> entries, foreign;
+              std::vector<std::string> entries;
               for (const auto &e : fs::directory_iterator(dir, ec))
-                {
-                  const std::string f = e.path().filename().string();
-                  entries.push_back(f);
-                  if (!is_glide_name(f))
-                    foreign.push_back(f);
-                }
+                entries.push_back(e.path().filename().string());
               if (ec)
                 throw OutputError("Cannot read the output directory " +
                                   in_quotes(dir) + ": " + advice(ec.value()) +
                                   ".");
-              if (!foreign.empty())
+              if (!entries.empty())
                 throw OutputError(
                   "The output directory " + in_quotes(dir) +
                   " already holds files that glide did not write (e.g. '" +
-                  foreign.front() +
-                  "'), and glide never deletes or overwrites a file it did "
-                  "not write. Choose another 'Scene name' or "
-                  "'Output/Directory', or move those files away.");
-              // Results of a glide that kept no manifest.
-              earlier = entries;
+                  entries.front() +
+                  "'; glide lists what it writes in '" + manifest_name +
+                  "', and there is none), and glide never deletes or "
+                  "overwrites a file it did not write. Choose another "
+                  "'Scene name' or 'Output/Directory', or move those files "
+                  "away (results of a glide older than this one: remove "
+                  "the directory).");
             }
           for (const auto &f : earlier)
             for (const std::string suffix : {"", ".tmp"})

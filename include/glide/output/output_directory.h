@@ -19,9 +19,7 @@ namespace glide
    * removes only the files of that list (and their `.tmp` names) and then
    * refuses to replace any file that exists and is not on the list: a file
    * of the user's is never deleted or overwritten. An existing directory
-   * without a manifest is taken over only if it is empty or holds nothing
-   * but files named as glide names its results (results of a glide that
-   * predates the manifest).
+   * without a manifest is taken over only if it is empty.
    *
    * Complete files only. Every file is written under `<name>.tmp`, checked
    * (stream state; `.vtu`/`.pvd` end with `</VTKFile>`; CSV rows all have
@@ -125,10 +123,6 @@ namespace glide
     is_complete(const std::string &path,
                 const std::string &kind,
                 std::string       &message);
-
-    /// Whether @p file is named as glide names the files it writes.
-    static bool
-    is_glide_name(const std::string &file);
 
     /// The manifest's file name.
     static const char *const manifest_name;
