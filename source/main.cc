@@ -104,9 +104,10 @@ main(int argc, char **argv)
                     {
                       glide::Scene::print_parameters(std::cout, format);
                     }
-                  catch (const dealii::ExceptionBase &)
+                  catch (const std::exception &)
                     {
-                      // ParameterHandler's ExcIO: the stream failed.
+                      // ParameterHandler's ExcIO, boost's JSON or XML
+                      // writer: the stream failed.
                       std::cout.setstate(std::ios::badbit);
                     }
                   check_standard_output("the parameters");

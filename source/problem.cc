@@ -412,8 +412,8 @@ namespace glide
         }
     }
     statistics->add_row(row);
-    const bool write_vtu = scene.output.write_vtu &&
-                           (step % scene.output.every == 0 || t >= 1.);
+    const bool write_vtu =
+      scene.output.write_vtu && (step % scene.output.every == 0 || t >= 1.);
     TimerOutput::Scope s(timer, "output");
     if (write_vtu)
       vtu->write(step, t, U);
@@ -464,11 +464,10 @@ namespace glide
             pcout << "  step failed: " << result.message << std::endl;
             t = t_old;
             if (step_cut_backs >= scene.load_stepping.maximum_cut_backs)
-              throw std::runtime_error("load step " + std::to_string(step + 1) +
-                                       " failed after " +
-                                       std::to_string(step_cut_backs) +
-                                       " cut-backs: " + result.message +
-                                       elasticity.holding_hint());
+              throw std::runtime_error(
+                "load step " + std::to_string(step + 1) + " failed after " +
+                std::to_string(step_cut_backs) +
+                " cut-backs: " + result.message + elasticity.holding_hint());
             ++cut_backs;
             ++step_cut_backs;
             dt *= scene.load_stepping.cut_back_factor;
@@ -508,8 +507,7 @@ namespace glide
           output->write_file("timings.csv", [&](std::ostream &out) {
             out << "quantity,value\n"
                 << "dofs," << elasticity.get_dof_handler().n_dofs() << "\n"
-                << "processes," << Utilities::MPI::n_mpi_processes(comm)
-                << "\n"
+                << "processes," << Utilities::MPI::n_mpi_processes(comm) << "\n"
                 << "linear_solver," << linear_solver.description() << "\n"
                 << "total_wall_time," << wall_time << "\n"
                 << "peak_memory_mib," << memory << "\n"

@@ -17,30 +17,31 @@ function(glide_bad_input name)
     ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
 endfunction()
 
-# 3D variant of the test block.
+# 3D variant of the test block. (%3B stands for ";", which CMake cannot pass
+# inside an argument; check_error.py turns it back.)
 set(BLOCK_3D --set "Dimension=3" --set "Analysis type=3d" --set "Body block/Block/Lower corner=0, 0, 0"
   --set "Body block/Block/Upper corner=2, 1, 1" --set "Body block/Block/Subdivisions=4, 2, 2"
-  --set "Boundary condition load/Function=t; -5*t; 0")
+  --set "Boundary condition load/Function=t%3B -5*t%3B 0")
 
 # Values that make the solve meaningless: every function value is checked
 # for finiteness where it is evaluated (CheckedFunction), moduli and
 # Poisson's ratio within what double precision resolves, every body held.
-glide_bad_input(value.nan_traction --expect "Boundary condition load/Function' = 'sqrt\\(x-1\\); -5\\*t': component 1 evaluates to NaN at \\(0"
-  -- ${BLOCK} --set "Boundary condition load/Function=sqrt(x-1); -5*t")
+glide_bad_input(value.nan_traction --expect "Boundary condition load/Function' = 'sqrt\\(x-1\\)%3B -5\\*t': component 1 evaluates to NaN at \\(0"
+  -- ${BLOCK} --set "Boundary condition load/Function=sqrt(x-1)%3B -5*t")
 glide_bad_input(value.inf_traction --expect "Boundary condition load/Function.*evaluates to \\+infinity.*division by zero"
-  -- ${BLOCK} --set "Boundary condition load/Function=t/0; -5*t")
+  -- ${BLOCK} --set "Boundary condition load/Function=t/0%3B -5*t")
 glide_bad_input(value.inf_at_last_load_factor --expect "Boundary condition load/Function.*component 2 evaluates to -infinity.*t = 1"
-  -- ${BLOCK} --set "Boundary condition load/Function=0; -5/(1-t)")
+  -- ${BLOCK} --set "Boundary condition load/Function=0%3B -5/(1-t)")
 glide_bad_input(value.nan_displacement --expect "Boundary condition bottom/Function.*NaN"
-  -- ${BLOCK} --set "Boundary condition bottom/Type=displacement" --set "Boundary condition bottom/Function=0; log(-1-t)")
+  -- ${BLOCK} --set "Boundary condition bottom/Type=displacement" --set "Boundary condition bottom/Function=0%3B log(-1-t)")
 glide_bad_input(value.nan_body_force --expect "Body block/Body force.*NaN"
-  -- ${BLOCK} --set "Body block/Body force=0; (x-x)/(y-y)")
+  -- ${BLOCK} --set "Body block/Body force=0%3B (x-x)/(y-y)")
 glide_bad_input(value.inf_pressure --expect "Boundary condition load/Function.*\\+infinity"
   -- ${BLOCK} --set "Boundary condition load/Type=pressure" --set "Boundary condition load/Function=1e300*1e300*t")
 glide_bad_input(value.nan_in_3d --expect "Boundary condition load/Function.*component 3 evaluates to NaN"
-  -- ${BLOCK} ${BLOCK_3D} --set "Boundary condition load/Function=t; -5*t; sqrt(z-2)")
+  -- ${BLOCK} ${BLOCK_3D} --set "Boundary condition load/Function=t%3B -5*t%3B sqrt(z-2)")
 glide_bad_input(value.nan_rigid_motion --expect "Body punch/Rigid body/Translation.*NaN"
-  -- ${PARAMETERS}/rigid-punch-meshed.prm --set "Body punch/Rigid body/Translation=0; sqrt(-1-t)")
+  -- ${PARAMETERS}/rigid-punch-meshed.prm --set "Body punch/Rigid body/Translation=0%3B sqrt(-1-t)")
 glide_bad_input(value.inf_modulus --expect "Young's modulus=inf'.*does not match"
   -- ${BLOCK} --set "Body block/Material/Young's modulus=inf")
 glide_bad_input(value.nan_modulus --expect "Young's modulus=nan'.*does not match"
@@ -66,25 +67,24 @@ glide_bad_input(value.empty_scene --expect "nothing that loads or moves its bodi
 glide_bad_input(value.all_fixed_no_load --expect "nothing that loads or moves its bodies"
   -- ${BLOCK} --set "Boundary condition load/Type=fixed")
 glide_bad_input(value.traction_only --expect "Body 'block' is not held: nothing stops its translation in x, translation in y and rotation about z around \\(1, 0.5\\).*Type = fixed"
-  -- ${BLOCK} --set "Boundary condition bottom/Type=traction" --set "Boundary condition bottom/Function=0; 10*t")
+  -- ${BLOCK} --set "Boundary condition bottom/Type=traction" --set "Boundary condition bottom/Function=0%3B 10*t")
 glide_bad_input(value.free_translation --expect "Body 'block' is not held: nothing stops its translation in x \\("
   -- ${BLOCK} --set "Boundary condition bottom/Type=YSYMM")
 glide_bad_input(value.free_rotation_about_a_point --expect "Body 'block' is not held: nothing stops its rotation about z around \\(0, 0\\)"
   -- ${BLOCK} --set "Node sets=corner" --set "Node set corner/Points=0, 0" --set "Boundary condition bottom/Surface=corner")
-glide_bad_input(value.free_in_3d --expect "Body 'block' is not held: nothing stops its translation in z, rotation about the axis along \\(1, 0, 0\\).*and rotation about the axis along \\(0, 1, 0\\)"
-  -- ${BLOCK} ${BLOCK_3D} --set "Boundary condition bottom/Type=ZSYMM" --set "Boundary condition bottom/Surface=block.back"
-     --set "Boundary conditions=bottom, load, side" --set "Boundary condition side/Surface=block.bottom" --set "Boundary condition side/Type=YSYMM")
+glide_bad_input(value.free_in_3d --expect "Body 'block' is not held: nothing stops its translation in x, translation in y and rotation about the axis along \\(0, 0, 1\\) through \\(1, 0.5, 0"
+  -- ${BLOCK} ${BLOCK_3D} --set "Boundary condition bottom/Type=ZSYMM" --set "Boundary condition bottom/Surface=block.back")
 glide_bad_input(value.free_axisymmetric --expect "Body 'block' is not held: nothing stops its translation along the axis \\(y\\)"
   -- ${BLOCK} --set "Analysis type=axisymmetric" --set "Boundary condition bottom/Type=XSYMM")
 glide_bad_input(value.held_only_by_open_contact --status 2 --expect "load step 1 failed.*Note: body 'block' is held against its translation in x, translation in y and rotation about z around \\(1, 0.5\\) only by contact"
-  -- ${BLOCK} --set "Boundary condition bottom/Type=traction" --set "Boundary condition bottom/Function=0; 1*t"
+  -- ${BLOCK} --set "Boundary condition bottom/Type=traction" --set "Boundary condition bottom/Function=0%3B 1*t"
      --set "Contact pairs=floor" --set "Contact pair floor/Slave=block.bottom" --set "Contact pair floor/Master=rigid plane"
      --set "Contact pair floor/Rigid master/Point=0, -1" --set "Load stepping/Maximum cut-backs=1")
 # The load step failed: the output directory exists (it is not an input
 # error), so only the status and the message are checked here.
 
 # Sizes: estimated before the mesh is built.
-glide_bad_input(size.subdivisions_2d --expect "Body block/Block/Subdivisions.*about 1e\\+10 cells.*GiB"
+glide_bad_input(size.subdivisions_2d --expect "about 1e\\+10 cells.*GiB.*Lower 'Body block/Block/Subdivisions'"
   -- ${BLOCK} --set "Body block/Block/Subdivisions=100000, 100000")
 glide_bad_input(size.refinements_2d --expect "too large.*Body block/Refinement/Global refinements.*by 4"
   -- ${BLOCK} --set "Body block/Refinement/Global refinements=12" --set "Discretization/Element degree=2")
@@ -116,7 +116,7 @@ glide_bad_input(name.backslash --expect "'Scene name' = 'a.b' contains a path se
 glide_bad_input(name.hidden --expect "'Scene name' = '.hidden' starts with '.'" -- ${BLOCK} --set "Scene name=.hidden")
 glide_bad_input(name.empty_from_file_name --copy-scene-as .prm --expect "the scene name is empty.*Set 'Scene name'" -- ${BLOCK} --set "Scene name=")
 glide_bad_input(name.hidden_file_name --copy-scene-as .block.prm --expect "the scene name '.block' \\(the scene file's name without extension\\) starts with '.'.*set 'Scene name'" -- ${BLOCK})
-glide_bad_input(name.empty_output_directory --expect "'Output/Directory' is empty; use '.'" -- ${BLOCK} --set "Output/Directory=")
+glide_bad_input(name.empty_output_directory --expect "'Output/Directory' is empty%3B use '.'" -- ${BLOCK} --set "Output/Directory=")
 
 # The output directory: never a file of the user's deleted or overwritten;
 # a directory that cannot be made is an input/output error (4), on every
@@ -138,5 +138,5 @@ glide_bad_input(fault.sigterm --fault sigterm --status 143 --expect "stopped by 
 glide_bad_input(fault.sigterm_contact --fault sigterm --status 143 --expect "stopped by signal SIGTERM" -- ${LONG_PUNCH})
 glide_bad_input(fault.sigkill --fault sigkill -- ${LONG_BLOCK})
 glide_bad_input(fault.sigkill_contact --fault sigkill -- ${LONG_PUNCH})
-glide_bad_input(fault.disk_full --fault disk-full --disk-size 160k --status 4 --expect "input/output error: .*[Tt]he disk is full" -- ${LONG_BLOCK})
-glide_bad_input(fault.disk_full_contact --fault disk-full --disk-size 1m --status 4 --expect "input/output error: .*(disk is full|cut short)" -- ${LONG_PUNCH})
+glide_bad_input(fault.disk_full --fault disk-full --disk-size 160k --status 4 --expect "input/output error: .*disk.* full" -- ${LONG_BLOCK})
+glide_bad_input(fault.disk_full_contact --fault disk-full --disk-size 1m --status 4 --expect "input/output error: .*(disk.* full|cut short)" -- ${LONG_PUNCH})

@@ -40,14 +40,15 @@ namespace glide
                       "1",
                       Patterns::Double(0.),
                       "Young's modulus E (stress units, e.g. Pa or MPa; "
-                      "must be > 0). Use the same unit system throughout "
-                      "the scene.");
+                      "1e-100 <= E <= 1e100). Use the same unit system "
+                      "throughout the scene; the moduli of the deformable "
+                      "bodies may differ by a factor of 1e12 at most.");
     prm.declare_entry("Poisson's ratio",
                       "0.3",
                       Patterns::Double(-1., 0.5),
-                      "Poisson's ratio nu, -1 < nu < 0.5 (nu = 0.5 is "
-                      "incompressible and not supported by this "
-                      "displacement formulation).");
+                      "Poisson's ratio nu, -0.9999 <= nu <= 0.4999 (nu = "
+                      "0.5 is incompressible and not supported by this "
+                      "displacement formulation; near it elements lock).");
     prm.leave_subsection();
   }
 
@@ -69,8 +70,8 @@ namespace glide
               "/Material/Young's modulus' must be greater than zero.");
     require(youngs_modulus >= smallest_modulus &&
               youngs_modulus <= largest_modulus,
-            "Parameter '" + path + "/Material/Young's modulus' = " +
-              short_number(youngs_modulus) +
+            "Parameter '" + path +
+              "/Material/Young's modulus' = " + short_number(youngs_modulus) +
               " is outside 1e-100 <= E <= 1e100, where the stiffness "
               "entries and their products in the solver overflow or "
               "underflow double precision. Choose units in which the "
@@ -82,8 +83,8 @@ namespace glide
     // load steps fail). Symmetrically, mu / K grows without bound as
     // nu -> -1.
     require(poissons_ratio >= -0.9999 && poissons_ratio <= 0.4999,
-            "Parameter '" + path + "/Material/Poisson's ratio' = " +
-              short_number(poissons_ratio) +
+            "Parameter '" + path +
+              "/Material/Poisson's ratio' = " + short_number(poissons_ratio) +
               " must satisfy -0.9999 <= nu <= 0.4999: closer to 0.5 the "
               "material is (nearly) incompressible, lambda/mu = 2 nu/(1 - "
               "2 nu) exceeds 5000, displacement elements lock and the "

@@ -7,8 +7,8 @@
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
-#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/numerics/vector_tools.h>
 
@@ -86,8 +86,9 @@ namespace glide
                                   const unsigned int n_components,
                                   const std::string &parameter) const
   {
-    auto f =
-      std::make_unique<CheckedFunction<dim>>(n_components, parameter, expression);
+    auto              f = std::make_unique<CheckedFunction<dim>>(n_components,
+                                                    parameter,
+                                                    expression);
     const std::string vars = (dim == 2 ? "x,y,t" : "x,y,z,t");
     try
       {
@@ -457,124 +458,125 @@ namespace glide
     // process: every process must hear of it (collective callers).
     std::string input_failure;
     try
-    {
-    for (const auto &d : dirichlet)
       {
-        const auto         &bc   = *d.parameters;
-        const ComponentMask mask = component_mask(bc);
-        std::map<types::boundary_id, const Function<dim> *> functions;
-        Functions::ZeroFunction<dim>                        zero(dim);
-        const Function<dim>                                *f = &zero;
-        if (bc.type == BoundaryConditionType::displacement)
+        for (const auto &d : dirichlet)
           {
-            if (exact)
-              f = exact.get();
-            else
+            const auto         &bc   = *d.parameters;
+            const ComponentMask mask = component_mask(bc);
+            std::map<types::boundary_id, const Function<dim> *> functions;
+            Functions::ZeroFunction<dim>                        zero(dim);
+            const Function<dim>                                *f = &zero;
+            if (bc.type == BoundaryConditionType::displacement)
               {
-                d.function->set_time(t);
-                f = d.function.get();
+                if (exact)
+                  f = exact.get();
+                else
+                  {
+                    d.function->set_time(t);
+                    f = d.function.get();
+                  }
               }
-          }
-        if (d.on_node_set)
-          {
-            Vector<double> value(dim);
-            for (const auto &[node_dofs, x] : d.nodes)
+            if (d.on_node_set)
               {
-                f->vector_value(x, value);
-                for (unsigned int comp = 0; comp < dim; ++comp)
-                  if (mask[comp] && c.can_store_line(node_dofs[comp]) &&
-                      !c.is_constrained(node_dofs[comp]))
-                    {
-                      c.add_line(node_dofs[comp]);
-                      c.set_inhomogeneity(node_dofs[comp], value[comp]);
-                    }
-              }
-            continue;
-          }
-        for (const auto id : d.ids)
-          functions[id] = f;
-        VectorTools::interpolate_boundary_values(
-          *mapping, dof_handler, functions, c, mask);
-      }
-    for (const auto &r : rigid_bodies)
-      {
-        Tensor<1, dim> T;
-        if (r.translation)
-          {
-            r.translation->set_time(t);
-            Vector<double> v(dim);
-            r.translation->vector_value(Point<dim>(), v);
-            for (unsigned int d = 0; d < dim; ++d)
-              T[d] = v[d];
-          }
-        r.rotation->set_time(t);
-        const double theta = r.rotation->value(Point<dim>());
-        std::map<types::global_dof_index, double> target;
-        for (const auto &[dof, comp, X] : r.dofs)
-          {
-            const Tensor<1, dim> x =
-              r.center + T + rotate<dim>(X - r.center, r.axis, theta);
-            target[dof] = x[comp] - X[comp];
-          }
-        for (const auto &[dof, comp, X] : r.dofs)
-          {
-            if (!c.can_store_line(dof))
-              continue;
-            if (!c.is_constrained(dof))
-              {
-                c.add_line(dof);
-                c.set_inhomogeneity(dof, target[dof]);
+                Vector<double> value(dim);
+                for (const auto &[node_dofs, x] : d.nodes)
+                  {
+                    f->vector_value(x, value);
+                    for (unsigned int comp = 0; comp < dim; ++comp)
+                      if (mask[comp] && c.can_store_line(node_dofs[comp]) &&
+                          !c.is_constrained(node_dofs[comp]))
+                        {
+                          c.add_line(node_dofs[comp]);
+                          c.set_inhomogeneity(node_dofs[comp], value[comp]);
+                        }
+                  }
                 continue;
               }
-            // A hanging node, u_h = sum w_j u_j: on a curved surface it
-            // does not lie on the straight edge between its parents, so
-            // the parents' rigid motion does not move it rigidly under a
-            // rotation (measured 5e-3 on the rigid sphere of
-            // hertz-3d-elastic.prm turned by pi/2). The inhomogeneity
-            // makes it exact: u_h = sum w_j u_j + (u_h* - sum w_j u_j*).
-            const auto *entries = c.get_constraint_entries(dof);
-            if (!entries || entries->empty())
-              continue;
-            double interpolated = 0.;
-            bool   all          = true;
-            for (const auto &[j, w] : *entries)
+            for (const auto id : d.ids)
+              functions[id] = f;
+            VectorTools::interpolate_boundary_values(
+              *mapping, dof_handler, functions, c, mask);
+          }
+        for (const auto &r : rigid_bodies)
+          {
+            Tensor<1, dim> T;
+            if (r.translation)
               {
-                const auto it = target.find(j);
-                all           = all && it != target.end();
-                if (it != target.end())
-                  interpolated += w * it->second;
+                r.translation->set_time(t);
+                Vector<double> v(dim);
+                r.translation->vector_value(Point<dim>(), v);
+                for (unsigned int d = 0; d < dim; ++d)
+                  T[d] = v[d];
               }
-            if (all)
-              c.set_inhomogeneity(dof, target[dof] - interpolated);
+            r.rotation->set_time(t);
+            const double theta = r.rotation->value(Point<dim>());
+            std::map<types::global_dof_index, double> target;
+            for (const auto &[dof, comp, X] : r.dofs)
+              {
+                const Tensor<1, dim> x =
+                  r.center + T + rotate<dim>(X - r.center, r.axis, theta);
+                target[dof] = x[comp] - X[comp];
+              }
+            for (const auto &[dof, comp, X] : r.dofs)
+              {
+                if (!c.can_store_line(dof))
+                  continue;
+                if (!c.is_constrained(dof))
+                  {
+                    c.add_line(dof);
+                    c.set_inhomogeneity(dof, target[dof]);
+                    continue;
+                  }
+                // A hanging node, u_h = sum w_j u_j: on a curved surface it
+                // does not lie on the straight edge between its parents, so
+                // the parents' rigid motion does not move it rigidly under a
+                // rotation (measured 5e-3 on the rigid sphere of
+                // hertz-3d-elastic.prm turned by pi/2). The inhomogeneity
+                // makes it exact: u_h = sum w_j u_j + (u_h* - sum w_j u_j*).
+                const auto *entries = c.get_constraint_entries(dof);
+                if (!entries || entries->empty())
+                  continue;
+                double interpolated = 0.;
+                bool   all          = true;
+                for (const auto &[j, w] : *entries)
+                  {
+                    const auto it = target.find(j);
+                    all           = all && it != target.end();
+                    if (it != target.end())
+                      interpolated += w * it->second;
+                  }
+                if (all)
+                  c.set_inhomogeneity(dof, target[dof] - interpolated);
+              }
+          }
+        if (axisymmetric)
+          {
+            // u_r = 0 on the axis r = 0: regularity of a solid of revolution.
+            const double tol = 1e-10 * mesh.scene_size();
+            std::vector<types::global_dof_index> dofs(fe.n_dofs_per_face());
+            for (const auto &cell : dof_handler.active_cell_iterators())
+              if (!cell->is_artificial())
+                for (const auto f : cell->face_indices())
+                  {
+                    const auto face    = cell->face(f);
+                    bool       on_axis = true;
+                    for (const auto v : face->vertex_indices())
+                      on_axis = on_axis && std::abs(face->vertex(v)[0]) < tol;
+                    if (!on_axis)
+                      continue;
+                    face->get_dof_indices(dofs);
+                    for (unsigned int i = 0; i < dofs.size(); ++i)
+                      if (fe.face_system_to_component_index(i).first == 0 &&
+                          c.can_store_line(dofs[i]) &&
+                          !c.is_constrained(dofs[i]))
+                        c.add_line(dofs[i]);
+                  }
           }
       }
-    if (axisymmetric)
-      {
-        // u_r = 0 on the axis r = 0: regularity of a solid of revolution.
-        const double                         tol = 1e-10 * mesh.scene_size();
-        std::vector<types::global_dof_index> dofs(fe.n_dofs_per_face());
-        for (const auto &cell : dof_handler.active_cell_iterators())
-          if (!cell->is_artificial())
-            for (const auto f : cell->face_indices())
-              {
-                const auto face    = cell->face(f);
-                bool       on_axis = true;
-                for (const auto v : face->vertex_indices())
-                  on_axis = on_axis && std::abs(face->vertex(v)[0]) < tol;
-                if (!on_axis)
-                  continue;
-                face->get_dof_indices(dofs);
-                for (unsigned int i = 0; i < dofs.size(); ++i)
-                  if (fe.face_system_to_component_index(i).first == 0 &&
-                      c.can_store_line(dofs[i]) && !c.is_constrained(dofs[i]))
-                    c.add_line(dofs[i]);
-              }
-      }
-    }
     catch (const InputError &e)
-    {
-      input_failure = e.what();
-    }
+      {
+        input_failure = e.what();
+      }
     throw_input_error_on_any_process(input_failure, comm);
     c.close();
     return c;
@@ -671,165 +673,166 @@ namespace glide
     std::string failure, input_failure;
     for (const auto &cell : dof_handler.active_cell_iterators())
       try
-      {
-        if (!cell->is_locally_owned() || !input_failure.empty())
-          continue;
-        fe_values.reinit(cell);
-        cell_matrix   = 0;
-        cell_rhs      = 0;
-        Material &law = *materials[cell->material_id()];
-        fe_values[u].get_function_gradients(U_ghost, grads);
-        if (axisymmetric)
-          fe_values[u].get_function_values(U_ghost, values);
-        const auto *body_force = body_forces[cell->material_id()].get();
+        {
+          if (!cell->is_locally_owned() || !input_failure.empty())
+            continue;
+          fe_values.reinit(cell);
+          cell_matrix   = 0;
+          cell_rhs      = 0;
+          Material &law = *materials[cell->material_id()];
+          fe_values[u].get_function_gradients(U_ghost, grads);
+          if (axisymmetric)
+            fe_values[u].get_function_values(U_ghost, values);
+          const auto *body_force = body_forces[cell->material_id()].get();
 
-        for (unsigned int q = 0; q < nq; ++q)
-          {
-            const Point<dim> &x = fe_values.quadrature_point(q);
-            const double      r = x[0];
-            const double      w =
-              fe_values.JxW(q) * (axisymmetric ? 2 * numbers::PI * r : 1.);
-            try
-              {
-                law.evaluate(embed<dim>(grads[q],
-                                        axisymmetric ? values[q][0] / r : 0.),
-                             P);
-              }
-            catch (const std::exception &e)
-              {
-                failure = e.what();
-                P       = 0;
-              }
+          for (unsigned int q = 0; q < nq; ++q)
+            {
+              const Point<dim> &x = fe_values.quadrature_point(q);
+              const double      r = x[0];
+              const double      w =
+                fe_values.JxW(q) * (axisymmetric ? 2 * numbers::PI * r : 1.);
+              try
+                {
+                  law.evaluate(embed<dim>(grads[q],
+                                          axisymmetric ? values[q][0] / r : 0.),
+                               P);
+                }
+              catch (const std::exception &e)
+                {
+                  failure = e.what();
+                  P       = 0;
+                }
 
-            Tensor<1, dim> b;
-            if (exact)
-              b = exact->body_force(x);
-            else if (body_force)
-              {
-                body_force->vector_value(x, load);
-                for (unsigned int d = 0; d < dim; ++d)
-                  b[d] = load[d];
-              }
+              Tensor<1, dim> b;
+              if (exact)
+                b = exact->body_force(x);
+              else if (body_force)
+                {
+                  body_force->vector_value(x, load);
+                  for (unsigned int d = 0; d < dim; ++d)
+                    b[d] = load[d];
+                }
 
-            for (unsigned int k = 0; k < n; ++k)
-              {
-                const unsigned int   c    = component[k];
-                const Tensor<1, dim> dphi = fe_values.shape_grad(k, q);
-                const double         phi  = fe_values.shape_value(k, q);
-                const double hoop = (axisymmetric && c == 0) ? phi / r : 0.;
-                if (F)
-                  {
-                    double v = 0;
-                    for (unsigned int j = 0; j < dim; ++j)
-                      v += P[c][j] * dphi[j];
-                    if (dim == 2)
-                      v += P[2][2] * hoop;
-                    cell_rhs(k) += (v - b[c] * phi) * w;
-                  }
-                if (tangent)
-                  {
-                    G[k] = 0;
-                    for (unsigned int j = 0; j < dim; ++j)
-                      G[k][c][j] = dphi[j];
-                    if (dim == 2)
-                      G[k][2][2] = hoop;
-                  }
-              }
-            if (tangent)
-              {
-                for (unsigned int l = 0; l < n; ++l)
-                  AG[l] = law.tangent(G[l]);
-                for (unsigned int k = 0; k < n; ++k)
-                  {
-                    const unsigned int c = component[k];
-                    for (unsigned int l = 0; l < n; ++l)
-                      {
-                        double v = 0;
-                        for (unsigned int j = 0; j < dim; ++j)
-                          v += AG[l][c][j] * G[k][c][j];
-                        if (dim == 2)
-                          v += AG[l][2][2] * G[k][2][2];
-                        cell_matrix(k, l) += v * w;
-                      }
-                  }
-              }
-          }
+              for (unsigned int k = 0; k < n; ++k)
+                {
+                  const unsigned int   c    = component[k];
+                  const Tensor<1, dim> dphi = fe_values.shape_grad(k, q);
+                  const double         phi  = fe_values.shape_value(k, q);
+                  const double hoop = (axisymmetric && c == 0) ? phi / r : 0.;
+                  if (F)
+                    {
+                      double v = 0;
+                      for (unsigned int j = 0; j < dim; ++j)
+                        v += P[c][j] * dphi[j];
+                      if (dim == 2)
+                        v += P[2][2] * hoop;
+                      cell_rhs(k) += (v - b[c] * phi) * w;
+                    }
+                  if (tangent)
+                    {
+                      G[k] = 0;
+                      for (unsigned int j = 0; j < dim; ++j)
+                        G[k][c][j] = dphi[j];
+                      if (dim == 2)
+                        G[k][2][2] = hoop;
+                    }
+                }
+              if (tangent)
+                {
+                  for (unsigned int l = 0; l < n; ++l)
+                    AG[l] = law.tangent(G[l]);
+                  for (unsigned int k = 0; k < n; ++k)
+                    {
+                      const unsigned int c = component[k];
+                      for (unsigned int l = 0; l < n; ++l)
+                        {
+                          double v = 0;
+                          for (unsigned int j = 0; j < dim; ++j)
+                            v += AG[l][c][j] * G[k][c][j];
+                          if (dim == 2)
+                            v += AG[l][2][2] * G[k][2][2];
+                          cell_matrix(k, l) += v * w;
+                        }
+                    }
+                }
+            }
 
-        // Tractions and pressures (dead loads on the reference surface).
-        if (F && !surface_loads.empty())
-          for (const auto f : cell->face_indices())
-            if (cell->face(f)->at_boundary())
-              for (const auto &l : surface_loads)
-                if (l.ids.count(cell->face(f)->boundary_id()))
-                  {
-                    fe_face.reinit(cell, f);
-                    for (unsigned int q = 0; q < face_quadrature.size(); ++q)
-                      {
-                        const Point<dim> &x = fe_face.quadrature_point(q);
-                        const double      w =
-                          fe_face.JxW(q) *
-                          (axisymmetric ? 2 * numbers::PI * x[0] : 1.);
-                        Tensor<1, dim> tr;
-                        if (l.parameters->type ==
-                            BoundaryConditionType::pressure)
-                          tr = -l.function->value(x) * fe_face.normal_vector(q);
-                        else
-                          {
-                            l.function->vector_value(x, load);
-                            for (unsigned int d = 0; d < dim; ++d)
-                              tr[d] = load[d];
-                          }
-                        for (unsigned int k = 0; k < n; ++k)
-                          cell_rhs(k) -=
-                            tr[component[k]] * fe_face.shape_value(k, q) * w;
-                      }
-                  }
+          // Tractions and pressures (dead loads on the reference surface).
+          if (F && !surface_loads.empty())
+            for (const auto f : cell->face_indices())
+              if (cell->face(f)->at_boundary())
+                for (const auto &l : surface_loads)
+                  if (l.ids.count(cell->face(f)->boundary_id()))
+                    {
+                      fe_face.reinit(cell, f);
+                      for (unsigned int q = 0; q < face_quadrature.size(); ++q)
+                        {
+                          const Point<dim> &x = fe_face.quadrature_point(q);
+                          const double      w =
+                            fe_face.JxW(q) *
+                            (axisymmetric ? 2 * numbers::PI * x[0] : 1.);
+                          Tensor<1, dim> tr;
+                          if (l.parameters->type ==
+                              BoundaryConditionType::pressure)
+                            tr =
+                              -l.function->value(x) * fe_face.normal_vector(q);
+                          else
+                            {
+                              l.function->vector_value(x, load);
+                              for (unsigned int d = 0; d < dim; ++d)
+                                tr[d] = load[d];
+                            }
+                          for (unsigned int k = 0; k < n; ++k)
+                            cell_rhs(k) -=
+                              tr[component[k]] * fe_face.shape_value(k, q) * w;
+                        }
+                    }
 
-        cell->get_dof_indices(dofs);
-        if (F && increment)
-          {
-            Vector<double> d(n), Kd(n);
-            for (unsigned int k = 0; k < n; ++k)
-              d(k) = D_ghost[dofs[k]];
-            cell_matrix.vmult(Kd, d);
-            cell_rhs += Kd;
-          }
-        if (F && J)
-          constraints.distribute_local_to_global(
-            cell_matrix, cell_rhs, dofs, *J, *F);
-        else if (F)
-          constraints.distribute_local_to_global(cell_rhs, dofs, *F);
-        else
-          constraints.distribute_local_to_global(cell_matrix, dofs, *J);
-      }
+          cell->get_dof_indices(dofs);
+          if (F && increment)
+            {
+              Vector<double> d(n), Kd(n);
+              for (unsigned int k = 0; k < n; ++k)
+                d(k) = D_ghost[dofs[k]];
+              cell_matrix.vmult(Kd, d);
+              cell_rhs += Kd;
+            }
+          if (F && J)
+            constraints.distribute_local_to_global(
+              cell_matrix, cell_rhs, dofs, *J, *F);
+          else if (F)
+            constraints.distribute_local_to_global(cell_rhs, dofs, *F);
+          else
+            constraints.distribute_local_to_global(cell_matrix, dofs, *J);
+        }
       catch (const InputError &e)
-      {
-        // A function of the scene that is not finite here: finish the
-        // loop (the other processes wait in compress()), then agree.
-        input_failure = e.what();
-      }
+        {
+          // A function of the scene that is not finite here: finish the
+          // loop (the other processes wait in compress()), then agree.
+          input_failure = e.what();
+        }
 
     // Concentrated forces at vertices.
     if (F && input_failure.empty())
       for (const auto &pf : point_forces)
         try
-        {
-          pf.function->set_time(t);
-          for (const auto &[node_dofs, x] : pf.nodes)
-            {
-              pf.function->vector_value(x, load);
-              std::vector<types::global_dof_index> idx(node_dofs.begin(),
-                                                       node_dofs.end());
-              Vector<double>                       f(dim);
-              for (unsigned int d = 0; d < dim; ++d)
-                f[d] = -load[d];
-              constraints.distribute_local_to_global(f, idx, *F);
-            }
-        }
+          {
+            pf.function->set_time(t);
+            for (const auto &[node_dofs, x] : pf.nodes)
+              {
+                pf.function->vector_value(x, load);
+                std::vector<types::global_dof_index> idx(node_dofs.begin(),
+                                                         node_dofs.end());
+                Vector<double>                       f(dim);
+                for (unsigned int d = 0; d < dim; ++d)
+                  f[d] = -load[d];
+                constraints.distribute_local_to_global(f, idx, *F);
+              }
+          }
         catch (const InputError &e)
-        {
-          input_failure = e.what();
-        }
+          {
+            input_failure = e.what();
+          }
 
     if (F)
       F->compress(VectorOperation::add);
@@ -1084,8 +1087,8 @@ namespace glide
     // meshed rigid body) acts against it: the null space of the Gram
     // matrix G = sum over the body's constrained vertex DoFs of m m^T,
     // with m the values of the modes there.
-    const unsigned int n_bodies = scene.bodies.size();
-    const unsigned int n_modes  = axisymmetric ? 1 : dim * (dim + 1) / 2;
+    const unsigned int  n_bodies = scene.bodies.size();
+    const unsigned int  n_modes  = axisymmetric ? 1 : dim * (dim + 1) / 2;
     std::vector<double> lower(n_bodies * dim,
                               std::numeric_limits<double>::max()),
       upper(n_bodies * dim, -std::numeric_limits<double>::max());
@@ -1154,7 +1157,8 @@ namespace glide
                 homogeneous_constraints.get_constraint_entries(i);
               if (entries && !entries->empty())
                 continue; // a hanging node, not a support
-              const auto m = mode_values(cell->material_id(), cell->vertex(v), c);
+              const auto m =
+                mode_values(cell->material_id(), cell->vertex(v), c);
               double *G = &gram[cell->material_id() * n_modes * n_modes];
               for (unsigned int a = 0; a < n_modes; ++a)
                 for (unsigned int b = 0; b < n_modes; ++b)
@@ -1162,7 +1166,7 @@ namespace glide
             }
     Utilities::MPI::sum(gram, comm, gram);
 
-    const char *axis[] = {"x", "y", "z"};
+    const char                           *axis[] = {"x", "y", "z"};
     std::vector<std::vector<std::string>> result(n_bodies);
     for (unsigned int b = 0; b < n_bodies; ++b)
       {
@@ -1186,7 +1190,8 @@ namespace glide
             for (unsigned int d = 0; d < dim; ++d)
               {
                 center[d] = 0.5 * (lower[b * dim + d] + upper[b * dim + d]);
-                L = std::max(L, 0.5 * (upper[b * dim + d] - lower[b * dim + d]));
+                L =
+                  std::max(L, 0.5 * (upper[b * dim + d] - lower[b * dim + d]));
               }
             L = (L > 0 ? L : 1.);
             Tensor<1, dim> t;
@@ -1249,6 +1254,24 @@ namespace glide
   {
     const std::string file = "In scene file '" + scene.file + "': ";
 
+    // A scene that neither loads nor moves anything has the solution 0;
+    // that is almost certainly a scene whose loads were forgotten.
+    bool loaded =
+      !scene.contact_pairs.empty() || scene.manufactured_solution != "none";
+    for (const auto &bc : scene.boundary_conditions)
+      loaded = loaded ||
+               !(bc.type == BoundaryConditionType::fixed || bc.is_symmetry());
+    for (const auto &b : scene.bodies)
+      loaded = loaded || !b.body_force.empty() || b.rigid;
+    require(loaded,
+            file +
+              "The scene has nothing that loads or moves its bodies (no "
+              "displacement, traction, pressure, force or body force, no "
+              "rigid-body motion, no contact pair): its solution is zero. Add "
+              "a load in a 'Boundary condition' subsection (see 'Boundary "
+              "conditions').");
+
+
     // Bodies in a contact pair: contact may hold them (if it closes).
     std::set<std::string> in_contact;
     bool                  node_set_slave = false;
@@ -1270,7 +1293,9 @@ namespace glide
           continue;
         std::string list;
         for (unsigned int i = 0; i < motions[b].size(); ++i)
-          list += (i == 0 ? "" : i + 1 == motions[b].size() ? " and " : ", ") +
+          list += (i == 0                     ? "" :
+                   i + 1 == motions[b].size() ? " and " :
+                                                ", ") +
                   motions[b][i];
         const std::string &name = scene.bodies[b].name;
         if (in_contact.count(name) || node_set_slave)
@@ -1286,8 +1311,7 @@ namespace glide
             continue;
           }
         throw InputError(
-          file + "Body '" + name + "' is not held: nothing stops its " +
-          list +
+          file + "Body '" + name + "' is not held: nothing stops its " + list +
           " (no fixed, displacement or symmetry condition acts against "
           "them, and the body is in no contact pair), so the equilibrium "
           "has no unique solution. Add a boundary condition that holds it, "
@@ -1307,7 +1331,7 @@ namespace glide
       }
 
     // Stiffnesses that double precision cannot resolve together.
-    double E_min = std::numeric_limits<double>::infinity(), E_max = 0;
+    double      E_min = std::numeric_limits<double>::infinity(), E_max = 0;
     std::string soft, stiff;
     for (const auto &b : scene.bodies)
       if (!b.rigid)
@@ -1342,8 +1366,8 @@ namespace glide
                   maximum_stiffness_ratio * (E_max > 0 ? E_max : E_min)),
                 file + "Parameter 'Contact pair " + cp.name +
                   "/Penalty stiffness' = " +
-                  short_number(cp.penalty_stiffness) +
-                  " is more than " + short_number(maximum_stiffness_ratio) +
+                  short_number(cp.penalty_stiffness) + " is more than " +
+                  short_number(maximum_stiffness_ratio) +
                   " times the stiffness of the bodies (Young's modulus " +
                   short_number(E_max) + " / scene size " + short_number(L) +
                   "): double precision cannot resolve the bodies next to "

@@ -2,10 +2,10 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <signal.h>
+
 #include <csignal>
 #include <cstring>
-
-#include <signal.h>
 
 namespace glide
 {
@@ -32,11 +32,12 @@ namespace glide
   } // namespace
 
   Interrupted::Interrupted(const int signal_number)
-    : std::runtime_error(std::string("stopped by signal ") +
-                         (signal_number == SIGTERM ? "SIGTERM" :
-                          signal_number == SIGINT  ? "SIGINT" :
-                          signal_number == SIGHUP  ? "SIGHUP" :
-                                                     std::to_string(signal_number)))
+    : std::runtime_error(
+        std::string("stopped by signal ") +
+        (signal_number == SIGTERM ? "SIGTERM" :
+         signal_number == SIGINT  ? "SIGINT" :
+         signal_number == SIGHUP  ? "SIGHUP" :
+                                    std::to_string(signal_number)))
     , signal_number(signal_number)
   {}
 
@@ -63,8 +64,8 @@ namespace glide
   void
   throw_if_interrupted(MPI_Comm comm)
   {
-    const int s = dealii::Utilities::MPI::max(static_cast<int>(last_signal),
-                                              comm);
+    const int s =
+      dealii::Utilities::MPI::max(static_cast<int>(last_signal), comm);
     if (s != 0)
       throw Interrupted(s);
   }

@@ -65,8 +65,7 @@ namespace glide
     disk_full(const std::string &path)
     {
       struct statvfs s;
-      return statvfs(path.c_str(), &s) == 0 && s.f_blocks > 0 &&
-             s.f_bfree == 0;
+      return statvfs(path.c_str(), &s) == 0 && s.f_blocks > 0 && s.f_bfree == 0;
     }
 
     std::string
@@ -121,10 +120,9 @@ namespace glide
           const fs::path  dir(directory);
           std::error_code ec;
           if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
-            throw OutputError(
-              "The output directory " + in_quotes(dir) +
-              " exists and is not a directory; choose another "
-              "'Output/Directory' or 'Scene name'.");
+            throw OutputError("The output directory " + in_quotes(dir) +
+                              " exists and is not a directory; choose another "
+                              "'Output/Directory' or 'Scene name'.");
           const bool created = fs::create_directories(dir, ec);
           if (ec)
             throw OutputError("Cannot create the output directory " +
@@ -159,8 +157,8 @@ namespace glide
                 throw OutputError(
                   "The output directory " + in_quotes(dir) +
                   " already holds files that glide did not write (e.g. '" +
-                  entries.front() +
-                  "'; glide lists what it writes in '" + manifest_name +
+                  entries.front() + "'; glide lists what it writes in '" +
+                  manifest_name +
                   "', and there is none), and glide never deletes or "
                   "overwrites a file it did not write. Choose another "
                   "'Scene name' or 'Output/Directory', or move those files "
@@ -216,7 +214,7 @@ namespace glide
       out.close();
       if (out.fail())
         {
-          const int error = errno;
+          const int       error = errno;
           std::error_code ec;
           fs::remove(tmp, ec);
           throw OutputError("Cannot write in the output directory " +
@@ -227,8 +225,8 @@ namespace glide
     std::error_code ec;
     fs::rename(tmp, dir / manifest_name, ec);
     if (ec)
-      throw OutputError("Cannot write " + in_quotes(dir / manifest_name) + ": " +
-                        advice(ec.value()) + ".");
+      throw OutputError("Cannot write " + in_quotes(dir / manifest_name) +
+                        ": " + advice(ec.value()) + ".");
   }
 
 
@@ -378,9 +376,8 @@ namespace glide
 
 
   void
-  OutputDirectory::write_file(
-    const std::string                         &file,
-    const std::function<void(std::ostream &)> &writer)
+  OutputDirectory::write_file(const std::string                         &file,
+                              const std::function<void(std::ostream &)> &writer)
   {
     write_tmp(file, writer);
     rename_into_place(directory + "/" + file + ".tmp", file);
@@ -448,13 +445,12 @@ namespace glide
           std::string message;
           for (const auto &f : data)
             if (!is_complete(staging_directory + "/" + f, kind_of(f), message))
-              throw OutputError("Writing " +
-                                in_quotes(fs::path(directory) / f) +
-                                " failed: it " + message + ". " +
-                                (disk_full(directory) ?
-                                   "The disk is full: free space there or "
-                                   "choose another 'Output/Directory'." :
-                                   std::string("")));
+              throw OutputError(
+                "Writing " + in_quotes(fs::path(directory) / f) +
+                " failed: it " + message + ". " +
+                (disk_full(directory) ? "The disk is full: free space there or "
+                                        "choose another 'Output/Directory'." :
+                                        std::string("")));
           for (const auto &f : indexes)
             if (!is_complete(staging_directory + "/" + f, kind_of(f), message))
               throw OutputError("Writing " +
@@ -463,8 +459,7 @@ namespace glide
           // The writers of staged files do not check their streams: a
           // disk that is full now may have cut one of them short.
           if (disk_full(directory))
-            throw OutputError("The disk of the output directory '" +
-                              directory +
+            throw OutputError("The disk of the output directory '" + directory +
                               "' is full: free space there or choose "
                               "another 'Output/Directory'.");
           for (const auto &f : data)
@@ -498,8 +493,8 @@ namespace glide
         }
       catch (const std::exception &e)
         {
-          failure = std::string("Cannot write the results of this step: ") +
-                    e.what();
+          failure =
+            std::string("Cannot write the results of this step: ") + e.what();
         }
     if (!failure.empty())
       {

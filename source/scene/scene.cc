@@ -82,10 +82,11 @@ namespace glide
     {
       const std::string where = "In scene file '" + file + "': ";
       require(!name.empty(),
-              where + "the scene name is empty: it defaults to the scene "
-                      "file's name without extension, which is empty for '" +
+              where +
+                "the scene name is empty: it defaults to the scene "
+                "file's name without extension, which is empty for '" +
                 file + "'. Set 'Scene name', e.g. 'set Scene name = run1'.");
-      const bool from_file = (name == stem);
+      const bool        from_file = (name == stem);
       const std::string what =
         from_file ? "the scene name '" + name +
                       "' (the scene file's name without extension)" :
@@ -131,7 +132,8 @@ namespace glide
                       Patterns::Anything(),
                       "Name of the scene; results go to "
                       "<Output/Directory>/<Scene name>/. Empty: the scene "
-                      "file's name without extension.");
+                      "file's name without extension. A plain name: no '/' "
+                      "or '\\', not starting with '.'.");
     prm.declare_entry("Dimension",
                       "2",
                       Patterns::Integer(2, 3),
@@ -440,21 +442,6 @@ namespace glide
             "geometrically linear scene ('Discretization/Geometric "
             "nonlinearity = false').");
 
-    // A scene that neither loads nor moves anything has the solution 0;
-    // that is almost certainly a scene whose loads were forgotten.
-    bool loaded = !contact_pairs.empty() || manufactured_solution != "none";
-    for (const auto &bc : boundary_conditions)
-      loaded = loaded || !(bc.type == BoundaryConditionType::fixed ||
-                           bc.is_symmetry());
-    for (const auto &b : bodies)
-      loaded = loaded || !b.body_force.empty() || b.rigid;
-    require(loaded,
-            "The scene has nothing that loads or moves its bodies (no "
-            "displacement, traction, pressure, force or body force, no "
-            "rigid-body motion, no contact pair): its solution is zero. Add "
-            "a load in a 'Boundary condition' subsection (see 'Boundary "
-            "conditions').");
-
     check_size();
 
     for (const auto &b : bodies)
@@ -501,7 +488,7 @@ namespace glide
     const double physical =
       page * static_cast<double>(sysconf(_SC_PHYS_PAGES)) *
       dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
-    double cells = 0, dofs = 0;
+    double      cells = 0, dofs = 0;
     std::string largest;
     double      largest_cells = 0;
     for (const auto &b : bodies)
@@ -522,17 +509,15 @@ namespace glide
       }
     const double entries_per_row =
       dimension * std::pow(2. * degree + 1., dimension);
-    const double bytes = 200. * cells + 12. * entries_per_row * dofs;
+    const double       bytes = 200. * cells + 12. * entries_per_row * dofs;
     std::ostringstream text;
-    text << std::setprecision(3) << "about " << cells << " cells and "
-         << dofs << " unknowns, at least " << bytes / (1 << 30)
-         << " GiB of memory";
+    text << std::setprecision(3) << "about " << cells << " cells and " << dofs
+         << " unknowns, at least " << bytes / (1 << 30) << " GiB of memory";
     const std::string advice =
-      " Lower 'Body " + largest +
-      "/Block/Subdivisions' or 'Body " + largest +
+      " Lower 'Body " + largest + "/Block/Subdivisions' or 'Body " + largest +
       "/Refinement/Global refinements' (each global refinement multiplies "
-      "the cells by " + std::to_string(1 << dimension) +
-      "), or run on more machines with MPI.";
+      "the cells by " +
+      std::to_string(1 << dimension) + "), or run on more machines with MPI.";
     require(bytes <= physical,
             "The mesh is too large for this machine: " + text.str() +
               ", but the machine has " +
@@ -542,7 +527,8 @@ namespace glide
     require(dofs < 4.e9 && cells < 4.e9,
             "The mesh is too large: " + text.str() +
               "; this build of deal.II numbers cells and unknowns with "
-              "32-bit integers (at most about 4e9)." + advice);
+              "32-bit integers (at most about 4e9)." +
+              advice);
   }
 
 
@@ -585,14 +571,14 @@ namespace glide
             for (auto slash = rest.find('/'); slash != std::string::npos;
                  slash      = rest.find('/'))
               {
-                path.push_back(Utilities::trim(rest.substr(0, slash)));
-                rest = rest.substr(slash + 1);
+                     path.push_back(Utilities::trim(rest.substr(0, slash)));
+                     rest = rest.substr(slash + 1);
               }
           }
           for (const auto &part : path)
             require(!part.empty(),
-                    "Command-line option --set '" + o +
-                      "': the path '" + o.substr(0, eq) +
+                    "Command-line option --set '" + o + "': the path '" +
+                      o.substr(0, eq) +
                       "' has an empty part; write \"Subsection/Entry=value\" "
                       "with the names that 'glide --print-parameters' "
                       "shows.");

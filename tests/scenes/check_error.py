@@ -55,6 +55,9 @@ ap.add_argument("--after-rows", type=int, default=3, help="kill after this many 
 ap.add_argument("--disk-size", default="160k", help="size of the tmpfs for --fault disk-full")
 ap.add_argument("args", nargs="*")
 a = ap.parse_args()
+# CMake splits arguments at ';', so tests write it as %3B (as in a URL).
+a.args = [x.replace("%3B", ";") for x in a.args]
+a.expect = [x.replace("%3B", ";") for x in a.expect]
 
 failures = []
 
@@ -84,9 +87,9 @@ mounted = False
 
 
 def glide_command(output):
-    cmd = [a.glide] + args
-    if scene_files:
-        cmd += ["--set", f"Output/Directory={output}"]
+    # The output directory first: the test's own --set (and a --set that
+    # lacks its argument) come after it.
+    cmd = [a.glide] + (["--set", f"Output/Directory={output}"] if scene_files else []) + args
     if a.mpirun:
         cmd = shlex.split(a.mpirun) + cmd
     return cmd

@@ -46,7 +46,9 @@ namespace glide
           if (this->n_components > 1)
             s << ": component " << component + 1;
           s << " evaluates to "
-            << (std::isnan(v) ? "NaN" : v > 0 ? "+infinity" : "-infinity")
+            << (std::isnan(v) ? "NaN" :
+                v > 0         ? "+infinity" :
+                                "-infinity")
             << " at (";
           for (unsigned int d = 0; d < dim; ++d)
             s << (d ? ", " : "") << p[d];

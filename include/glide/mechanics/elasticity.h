@@ -336,7 +336,7 @@ namespace glide
     std::unique_ptr<ManufacturedSolution<dim>>                exact;
     std::vector<dealii::types::boundary_id>                   symmetry_ids[3];
     std::map<std::string, const NodeSetParameters *>          scene_node_sets;
-    std::vector<std::string> holding_hints;
+    std::vector<std::string>                                  holding_hints;
     double max_youngs_modulus = 1., min_youngs_modulus = 1.,
            reference_area = 1.;
     bool axisymmetric;

@@ -141,10 +141,10 @@ namespace glide
     void
     rename_into_place(const std::string &from, const std::string &file);
 
-    const std::string     directory, staging_directory;
-    MPI_Comm              comm;
-    const bool            root;
-    std::set<std::string> manifest;
+    const std::string        directory, staging_directory;
+    MPI_Comm                 comm;
+    const bool               root;
+    std::set<std::string>    manifest;
     std::vector<std::string> pending_indexes;
   };
 } // namespace glide
