@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # glide quick start: installs what is missing (Debian 12, as root), builds in
-# Release, then either runs the default scene ("run") or the whole test suite
+# Release, then either runs a first contact scene ("run":
+# parameters/quickstart.prm, a cylinder pressed onto an elastic block) or the whole test suite
 # through ctest ("test"). Used by the README's two commands and by .ci/run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -9,9 +10,9 @@ mode=${1:-run}
 # Debian packages glide needs: deal.II with Trilinos/SUNDIALS/p4est/MPI,
 # GoogleTest, an optimized BLAS (MUMPS is ten times slower with the
 # reference BLAS), Open MPI's mpirun, and for the tests numdiff, Python with
-# VTK and NumPy, clang-format.
+# VTK, NumPy and Matplotlib (the studies' plots), clang-format.
 packages="cmake g++ make libdeal.ii-dev libgtest-dev libopenblas0-pthread openmpi-bin
-          numdiff python3 python3-vtk9 python3-numpy clang-format"
+          numdiff python3 python3-vtk9 python3-numpy python3-matplotlib clang-format"
 missing=""
 for p in $packages; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
@@ -28,8 +29,24 @@ cmake --build build -j2
 
 case "$mode" in
   run)
-    ./build/glide parameters/default.prm
-    echo "Results: output/default/default.pvd (open in ParaView), output/default/statistics.csv"
+    ./build/glide parameters/quickstart.prm
+    out=output/quickstart
+    cat <<EOF
+
+glide ran parameters/quickstart.prm: a cylinder pressed onto an elastic block
+(two elastic bodies, frictionless contact). The results are in $out/:
+  $out/quickstart.pvd      open in ParaView; apply Warp By Vector
+                           ('displacement') and colour by 'von_Mises'
+  $out/contact-hertz.pvd   the contact (slave) nodes: colour by 'CPRESS',
+                           render as Point Gaussian over the bodies
+  $out/statistics.csv      one row per load step: iterations, reactions,
+                           contact force (contact_hertz_force_y = 1e-3 = the
+                           load at the last step)
+  $out/contact-hertz-0003.csv  per slave node: gap COPEN, pressure CPRESS,
+                           status CSTATUS (peak pressure about 0.013)
+Next: read parameters/quickstart.prm (its header says what to expect);
+'./build/glide --print-parameters' lists every parameter.
+EOF
     ;;
   test)
     cmake --build build --target format_check

@@ -2,6 +2,8 @@
 // program: it reads a scene (.prm), dispatches on its dimension once, and
 // turns every error into one message and a non-zero exit status.
 
+#include <glide/output/interruption.h>
+#include <glide/output/output_error.h>
 #include <glide/problem.h>
 #include <glide/scene/input_error.h>
 #include <glide/scene/scene.h>
@@ -9,7 +11,9 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 
+#include <filesystem>
 #include <iostream>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -31,7 +35,24 @@ namespace
     "                             Global refinements=3\" (repeatable)\n"
     "\n"
     "Exit status: 0 success, 1 input error, 2 a load step failed, 3 internal\n"
-    "error. Run in parallel with mpirun -np N glide SCENE.prm.\n";
+    "error, 4 input/output error (output directory, full disk, closed\n"
+    "standard output), 128+N stopped by signal N (SIGTERM: 143, SIGINT:\n"
+    "130) after the last complete load step. Run in parallel with\n"
+    "mpirun -np N glide SCENE.prm.\n";
+
+  /// Standard output must have taken everything (a closed or full
+  /// standard output is an input/output error, not a crash).
+  void
+  check_standard_output(const std::string &what)
+  {
+    std::cout.flush();
+    if (!std::cout)
+      throw glide::OutputError(
+        "Cannot write " + what +
+        " to standard output (it is closed or the disk is full); "
+        "redirect it to a file you may write, e.g. 'glide "
+        "--print-parameters > parameters.prm'.");
+  }
 } // namespace
 
 #ifdef GLIDE_SANITIZE
@@ -51,6 +72,7 @@ main(int argc, char **argv)
   const MPI_Comm                           comm = MPI_COMM_WORLD;
   const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
 
+  glide::install_interrupt_handlers();
   try
     {
       std::vector<std::string> args(argv + 1, argv + argc), overrides;
@@ -61,7 +83,10 @@ main(int argc, char **argv)
           if (a == "--help" || a == "-h")
             {
               if (root)
-                std::cout << usage;
+                {
+                  std::cout << usage;
+                  check_standard_output("the help");
+                }
               return 0;
             }
           if (a == "--print-parameters")
@@ -74,7 +99,19 @@ main(int argc, char **argv)
                 "--print-parameters takes prm, json or xml, not '" + format +
                   "'.");
               if (root)
-                glide::Scene::print_parameters(std::cout, format);
+                {
+                  try
+                    {
+                      glide::Scene::print_parameters(std::cout, format);
+                    }
+                  catch (const std::exception &)
+                    {
+                      // ParameterHandler's ExcIO, boost's JSON or XML
+                      // writer: the stream failed.
+                      std::cout.setstate(std::ios::badbit);
+                    }
+                  check_standard_output("the parameters");
+                }
               return 0;
             }
           if (a == "--set")
@@ -105,6 +142,37 @@ main(int argc, char **argv)
     {
       if (root)
         std::cerr << "glide: input error: " << e.what() << std::endl;
+      return 1;
+    }
+  catch (const glide::OutputError &e)
+    {
+      if (root)
+        std::cerr << "glide: input/output error: " << e.what() << std::endl;
+      return 4;
+    }
+  catch (const std::filesystem::filesystem_error &e)
+    {
+      if (root)
+        std::cerr << "glide: input/output error: " << e.what() << std::endl;
+      return 4;
+    }
+  catch (const glide::Interrupted &e)
+    {
+      if (root)
+        std::cerr << "glide: " << e.what()
+                  << "; every load step in statistics.csv and the .pvd "
+                     "files is complete."
+                  << std::endl;
+      return 128 + e.signal_number;
+    }
+  catch (const std::bad_alloc &)
+    {
+      if (root)
+        std::cerr << "glide: input error: out of memory: the scene is too "
+                     "large for this machine; lower 'Subdivisions', "
+                     "'Global refinements' or 'Local refinements', or run "
+                     "on more machines with MPI."
+                  << std::endl;
       return 1;
     }
   catch (const dealii::ExceptionBase &e)

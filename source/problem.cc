@@ -1,3 +1,5 @@
+#include <glide/output/interruption.h>
+#include <glide/output/output_error.h>
 #include <glide/problem.h>
 #include <glide/scene/input_error.h>
 #include <glide/solver/linear_solver.h>
@@ -72,6 +74,9 @@ namespace glide
                               contact.add_sparsity(dsp);
                             });
     jacobian.reinit(elasticity.matrix_pattern());
+    // Input checks that need the constraints: every body held, every
+    // function finite (before anything is written).
+    elasticity.check_inputs();
     const bool saddle_point = contact.n_multipliers() > 0;
     require(
       !(saddle_point && scene.linear_solver.type == "amg"),
@@ -133,26 +138,17 @@ namespace glide
   Problem<dim>::prepare_output()
   {
     // Output goes to <directory>/<scene name>/; only now, after all checks.
-    directory = scene.output.directory + "/" + scene.name;
+    output = std::make_unique<OutputDirectory>(scene.output.directory,
+                                               scene.name,
+                                               comm);
+    output->prepare();
+    directory  = output->path();
+    statistics = std::make_unique<Statistics>(*output, comm);
+    vtu = std::make_unique<VtuWriter<dim>>(elasticity, *output, scene.name);
+    // Contact output goes to the staging directory; commit_step() moves
+    // it into place with the step's indexes.
     if (Utilities::MPI::this_mpi_process(comm) == 0)
-      {
-        std::filesystem::create_directories(directory);
-        for (const auto &entry : std::filesystem::directory_iterator(directory))
-          {
-            const std::string f = entry.path().filename().string();
-            if ((f.rfind(scene.name + "-", 0) == 0 &&
-                 (f.find(".vtu") != std::string::npos)) ||
-                f == scene.name + ".pvd" || f.rfind("contact-", 0) == 0 ||
-                f == "statistics.csv" || f == "timings.csv")
-              std::filesystem::remove(entry.path());
-          }
-      }
-    MPI_Barrier(comm);
-    statistics =
-      std::make_unique<Statistics>(directory + "/statistics.csv", comm);
-    vtu = std::make_unique<VtuWriter<dim>>(elasticity, directory, scene.name);
-    if (Utilities::MPI::this_mpi_process(comm) == 0)
-      contact_output = std::make_unique<ContactWriter<dim>>(directory);
+      contact_output = std::make_unique<ContactWriter<dim>>(output->staging());
   }
 
   template <int dim>
@@ -418,11 +414,14 @@ namespace glide
         }
       for (const auto &column : contact.statistics(U))
         row.push_back(column);
-      if (contact.active())
+      if (contact.active()) // into the staging directory, see below
         {
-          const auto fields = contact.nodal_fields(U, t);
+          const auto  fields = contact.nodal_fields(U, t);
+          std::string failure;
           if (contact_output)
-            contact_output->write(fields, step, t, scene.output.write_vtu);
+            failure =
+              contact_output->write(fields, step, t, scene.output.write_vtu);
+          throw_output_error_on_any_process(failure, comm);
         }
       if (scene.manufactured_solution != "none")
         {
@@ -432,11 +431,17 @@ namespace glide
         }
     }
     statistics->add_row(row);
-    if (scene.output.write_vtu && (step % scene.output.every == 0 || t >= 1.))
-      {
-        TimerOutput::Scope s(timer, "output");
-        vtu->write(step, t, U);
-      }
+    const bool write_vtu =
+      scene.output.write_vtu && (step % scene.output.every == 0 || t >= 1.);
+    TimerOutput::Scope s(timer, "output");
+    if (write_vtu)
+      vtu->write(step, t, U);
+    // The indexes (.pvd files, statistics.csv) after the data they list.
+    output->commit_step([&]() {
+      if (write_vtu)
+        vtu->write_pvd();
+      statistics->write();
+    });
   }
 
   template <int dim>
@@ -453,6 +458,7 @@ namespace glide
     LoadStepper stepper(scene.load_stepping);
     while (stepper.running())
       {
+        throw_if_interrupted(comm); // SIGTERM: stop between steps
         const double t_old = stepper.time();
         t                  = stepper.begin_step();
         VectorType U_trial = U;
@@ -469,7 +475,7 @@ namespace glide
         if (!result.converged)
           {
             pcout << "  step failed: " << result.message << std::endl;
-            stepper.reject(result.message);
+            stepper.reject(result.message + elasticity.holding_hint());
             t = t_old;
             pcout << "  cutting back: new increment " << stepper.increment()
                   << " (cut-back " << stepper.step_cut_backs() << " of at most "
@@ -501,23 +507,31 @@ namespace glide
     pcout << "Finished " << steps << " load step(s) with " << cut_backs
           << " cut-back(s) in " << std::fixed << std::setprecision(2)
           << wall_time << " s; peak memory " << memory << " MiB" << std::endl;
+    std::string failure;
     if (Utilities::MPI::this_mpi_process(comm) == 0)
-      {
-        std::ofstream out(directory + "/timings.csv");
-        out << "quantity,value\n"
-            << "dofs," << elasticity.get_dof_handler().n_dofs() << "\n"
-            << "processes," << Utilities::MPI::n_mpi_processes(comm) << "\n"
-            << "linear_solver," << linear_solver.description() << "\n"
-            << "total_wall_time," << wall_time << "\n"
-            << "peak_memory_mib," << memory << "\n"
-            << "contact_search_time," << contact.search_time() << "\n";
-        for (const auto &[section, time] :
-             timer.get_summary_data(TimerOutput::total_wall_time))
-          out << "time:" << section << "," << time << "\n";
-        for (const auto &[section, n] :
-             timer.get_summary_data(TimerOutput::n_calls))
-          out << "calls:" << section << "," << n << "\n";
-      }
+      try
+        {
+          output->write_file("timings.csv", [&](std::ostream &out) {
+            out << "quantity,value\n"
+                << "dofs," << elasticity.get_dof_handler().n_dofs() << "\n"
+                << "processes," << Utilities::MPI::n_mpi_processes(comm) << "\n"
+                << "linear_solver," << linear_solver.description() << "\n"
+                << "total_wall_time," << wall_time << "\n"
+                << "peak_memory_mib," << memory << "\n"
+                << "contact_search_time," << contact.search_time() << "\n";
+            for (const auto &[section, time] :
+                 timer.get_summary_data(TimerOutput::total_wall_time))
+              out << "time:" << section << "," << time << "\n";
+            for (const auto &[section, n] :
+                 timer.get_summary_data(TimerOutput::n_calls))
+              out << "calls:" << section << "," << n << "\n";
+          });
+        }
+      catch (const OutputError &e)
+        {
+          failure = e.what();
+        }
+    throw_output_error_on_any_process(failure, comm);
   }
 
   template <int dim>

@@ -4,6 +4,7 @@
 #include <glide/contact/contact.h>
 #include <glide/mechanics/elasticity.h>
 #include <glide/output/contact_output.h>
+#include <glide/output/output_directory.h>
 #include <glide/output/statistics.h>
 #include <glide/output/vtu_writer.h>
 #include <glide/scene/scene.h>
@@ -110,6 +111,7 @@ namespace glide
     VectorType                          residual_scale, solution_scale;
     ActiveSetMonitor<dim>               monitor;
     std::string                         directory;
+    std::unique_ptr<OutputDirectory>    output;
     std::unique_ptr<Statistics>         statistics;
     std::unique_ptr<VtuWriter<dim>>     vtu;
     std::unique_ptr<ContactWriter<dim>> contact_output;

@@ -537,7 +537,7 @@ namespace glide
     const Constraint<dim>                         &s,
     const typename ContactEnforcement<dim>::Force &f) const
   {
-    if (!stabilize || !pair.formulation->stabilizable() || f.closed ||
+    if (!stabilize || !pair.formulation->stabilizable(s) || f.closed ||
         !s.found() || !(s.gap >= 0.) || s.gap >= node.size)
       return 0.;
     const double w = 1. - s.gap / node.size;

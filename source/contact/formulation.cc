@@ -87,7 +87,7 @@ namespace glide
 
   template <int dim>
   bool
-  Formulation<dim>::stabilizable() const
+  Formulation<dim>::stabilizable(const Constraint<dim> &) const
   {
     return true;
   }

@@ -1,9 +1,23 @@
 #include <glide/material/material.h>
 #include <glide/scene/input_error.h>
 
+#include <iomanip>
+#include <sstream>
+
 namespace glide
 {
   using namespace dealii;
+
+  namespace
+  {
+    std::string
+    short_number(const double x)
+    {
+      std::ostringstream s;
+      s << std::setprecision(12) << x;
+      return s.str();
+    }
+  } // namespace
 
   double
   MaterialParameters::lambda() const
@@ -26,14 +40,15 @@ namespace glide
                       "1",
                       Patterns::Double(0.),
                       "Young's modulus E (stress units, e.g. Pa or MPa; "
-                      "must be > 0). Use the same unit system throughout "
-                      "the scene.");
+                      "1e-100 <= E <= 1e100). Use the same unit system "
+                      "throughout the scene; the moduli of the deformable "
+                      "bodies may differ by a factor of 1e12 at most.");
     prm.declare_entry("Poisson's ratio",
                       "0.3",
                       Patterns::Double(-1., 0.5),
-                      "Poisson's ratio nu, -1 < nu < 0.5 (nu = 0.5 is "
-                      "incompressible and not supported by this "
-                      "displacement formulation).");
+                      "Poisson's ratio nu, -0.9999 <= nu <= 0.4999 (nu = "
+                      "0.5 is incompressible and not supported by this "
+                      "displacement formulation; near it elements lock).");
     prm.leave_subsection();
   }
 
@@ -45,13 +60,36 @@ namespace glide
     youngs_modulus = prm.get_double("Young's modulus");
     poissons_ratio = prm.get_double("Poisson's ratio");
     prm.leave_subsection();
+    // 1e-100 <= E <= 1e100 in any unit system: stiffness entries (E times
+    // lengths) and their products in the direct solver's factorization
+    // must stay far inside double precision's range (1e+-308); outside it
+    // the solve overflows into infinities and NaN.
+    constexpr double smallest_modulus = 1e-100, largest_modulus = 1e100;
     require(youngs_modulus > 0.,
             "Parameter '" + path +
               "/Material/Young's modulus' must be greater than zero.");
-    require(poissons_ratio > -1. && poissons_ratio < 0.5,
+    require(youngs_modulus >= smallest_modulus &&
+              youngs_modulus <= largest_modulus,
             "Parameter '" + path +
-              "/Material/Poisson's ratio' must satisfy -1 < nu < 0.5; use "
-              "for example 0.49 for a nearly incompressible material.");
+              "/Material/Young's modulus' = " + short_number(youngs_modulus) +
+              " is outside 1e-100 <= E <= 1e100, where the stiffness "
+              "entries and their products in the solver overflow or "
+              "underflow double precision. Choose units in which the "
+              "moduli are moderate numbers (e.g. MPa and mm for steel: "
+              "210000).");
+    // nu = 0.5 is incompressible; lambda / mu = 2 nu / (1 - 2 nu) is about
+    // 5000 at nu = 0.4999: beyond, displacement elements lock completely
+    // and the Newton systems lose the digits the tolerance needs (the
+    // load steps fail). Symmetrically, mu / K grows without bound as
+    // nu -> -1.
+    require(poissons_ratio >= -0.9999 && poissons_ratio <= 0.4999,
+            "Parameter '" + path +
+              "/Material/Poisson's ratio' = " + short_number(poissons_ratio) +
+              " must satisfy -0.9999 <= nu <= 0.4999: closer to 0.5 the "
+              "material is (nearly) incompressible, lambda/mu = 2 nu/(1 - "
+              "2 nu) exceeds 5000, displacement elements lock and the "
+              "solve fails; use for example 0.49 for rubber (this "
+              "displacement formulation has no incompressible mode).");
   }
 
 

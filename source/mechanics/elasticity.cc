@@ -1,3 +1,4 @@
+#include <glide/mechanics/checked_function.h>
 #include <glide/mechanics/elasticity.h>
 #include <glide/mechanics/rotation.h>
 #include <glide/scene/input_error.h>
@@ -7,9 +8,12 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <cmath>
+#include <iomanip>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -29,6 +33,18 @@ namespace glide
         message = m;
     message = Utilities::MPI::broadcast(comm, message, 0);
     throw std::runtime_error(message);
+  }
+
+  void
+  throw_input_error_on_any_process(const std::string &failure, MPI_Comm comm)
+  {
+    if (Utilities::MPI::max(failure.empty() ? 0 : 1, comm) == 0)
+      return;
+    std::string message;
+    for (const auto &m : Utilities::MPI::gather(comm, failure, 0))
+      if (message.empty() && !m.empty())
+        message = m;
+    throw InputError(Utilities::MPI::broadcast(comm, message, 0));
   }
 
   namespace
@@ -70,7 +86,9 @@ namespace glide
                                   const unsigned int n_components,
                                   const std::string &parameter) const
   {
-    auto              f = std::make_unique<FunctionParser<dim>>(n_components);
+    auto              f = std::make_unique<CheckedFunction<dim>>(n_components,
+                                                    parameter,
+                                                    expression);
     const std::string vars = (dim == 2 ? "x,y,t" : "x,y,z,t");
     try
       {
@@ -78,8 +96,11 @@ namespace glide
                       Utilities::split_string_list(expression, ';'),
                       {{"pi", numbers::PI}},
                       true);
-        Vector<double> v(n_components);
-        f->vector_value(Point<dim>(), v); // muparser compiles lazily
+        // muparser compiles lazily. The unchecked value: the origin need
+        // not be a point of the body (the values are checked where they
+        // are used).
+        for (unsigned int c = 0; c < n_components; ++c)
+          f->FunctionParser<dim>::value(Point<dim>(), c);
       }
     catch (const ExceptionBase &e)
       {
@@ -166,8 +187,8 @@ namespace glide
     for (unsigned int i = 0; i < points.size(); ++i)
       {
         std::ostringstream p;
-        for (const auto c : points[i])
-          p << (&c == &points[i][0] ? "" : ", ") << c;
+        for (unsigned int d = 0; d < points[i].size(); ++d)
+          p << (d ? ", " : "") << points[i][d];
         require(Utilities::MPI::sum(found[i], comm) > 0,
                 "Node set '" + surface + "': no mesh vertex within " +
                   std::to_string(tol) + " of the point (" + p.str() +
@@ -433,118 +454,130 @@ namespace glide
     AffineConstraints<double> c;
     c.reinit(relevant_total);
     DoFTools::make_hanging_node_constraints(dof_handler, c);
-    for (const auto &d : dirichlet)
+    // A function of the scene that is not finite at a point of this
+    // process: every process must hear of it (collective callers).
+    std::string input_failure;
+    try
       {
-        const auto         &bc   = *d.parameters;
-        const ComponentMask mask = component_mask(bc);
-        std::map<types::boundary_id, const Function<dim> *> functions;
-        Functions::ZeroFunction<dim>                        zero(dim);
-        const Function<dim>                                *f = &zero;
-        if (bc.type == BoundaryConditionType::displacement)
+        for (const auto &d : dirichlet)
           {
-            if (exact)
-              f = exact.get();
-            else
+            const auto         &bc   = *d.parameters;
+            const ComponentMask mask = component_mask(bc);
+            std::map<types::boundary_id, const Function<dim> *> functions;
+            Functions::ZeroFunction<dim>                        zero(dim);
+            const Function<dim>                                *f = &zero;
+            if (bc.type == BoundaryConditionType::displacement)
               {
-                d.function->set_time(t);
-                f = d.function.get();
+                if (exact)
+                  f = exact.get();
+                else
+                  {
+                    d.function->set_time(t);
+                    f = d.function.get();
+                  }
               }
-          }
-        if (d.on_node_set)
-          {
-            Vector<double> value(dim);
-            for (const auto &[node_dofs, x] : d.nodes)
+            if (d.on_node_set)
               {
-                f->vector_value(x, value);
-                for (unsigned int comp = 0; comp < dim; ++comp)
-                  if (mask[comp] && c.can_store_line(node_dofs[comp]) &&
-                      !c.is_constrained(node_dofs[comp]))
-                    {
-                      c.add_line(node_dofs[comp]);
-                      c.set_inhomogeneity(node_dofs[comp], value[comp]);
-                    }
-              }
-            continue;
-          }
-        for (const auto id : d.ids)
-          functions[id] = f;
-        VectorTools::interpolate_boundary_values(
-          *mapping, dof_handler, functions, c, mask);
-      }
-    for (const auto &r : rigid_bodies)
-      {
-        Tensor<1, dim> T;
-        if (r.translation)
-          {
-            r.translation->set_time(t);
-            Vector<double> v(dim);
-            r.translation->vector_value(Point<dim>(), v);
-            for (unsigned int d = 0; d < dim; ++d)
-              T[d] = v[d];
-          }
-        r.rotation->set_time(t);
-        const double theta = r.rotation->value(Point<dim>());
-        std::map<types::global_dof_index, double> target;
-        for (const auto &[dof, comp, X] : r.dofs)
-          {
-            const Tensor<1, dim> x =
-              r.center + T + rotate<dim>(X - r.center, r.axis, theta);
-            target[dof] = x[comp] - X[comp];
-          }
-        for (const auto &[dof, comp, X] : r.dofs)
-          {
-            if (!c.can_store_line(dof))
-              continue;
-            if (!c.is_constrained(dof))
-              {
-                c.add_line(dof);
-                c.set_inhomogeneity(dof, target[dof]);
+                Vector<double> value(dim);
+                for (const auto &[node_dofs, x] : d.nodes)
+                  {
+                    f->vector_value(x, value);
+                    for (unsigned int comp = 0; comp < dim; ++comp)
+                      if (mask[comp] && c.can_store_line(node_dofs[comp]) &&
+                          !c.is_constrained(node_dofs[comp]))
+                        {
+                          c.add_line(node_dofs[comp]);
+                          c.set_inhomogeneity(node_dofs[comp], value[comp]);
+                        }
+                  }
                 continue;
               }
-            // A hanging node, u_h = sum w_j u_j: on a curved surface it
-            // does not lie on the straight edge between its parents, so
-            // the parents' rigid motion does not move it rigidly under a
-            // rotation (measured 5e-3 on the rigid sphere of
-            // hertz-3d-elastic.prm turned by pi/2). The inhomogeneity
-            // makes it exact: u_h = sum w_j u_j + (u_h* - sum w_j u_j*).
-            const auto *entries = c.get_constraint_entries(dof);
-            if (!entries || entries->empty())
-              continue;
-            double interpolated = 0.;
-            bool   all          = true;
-            for (const auto &[j, w] : *entries)
+            for (const auto id : d.ids)
+              functions[id] = f;
+            VectorTools::interpolate_boundary_values(
+              *mapping, dof_handler, functions, c, mask);
+          }
+        for (const auto &r : rigid_bodies)
+          {
+            Tensor<1, dim> T;
+            if (r.translation)
               {
-                const auto it = target.find(j);
-                all           = all && it != target.end();
-                if (it != target.end())
-                  interpolated += w * it->second;
+                r.translation->set_time(t);
+                Vector<double> v(dim);
+                r.translation->vector_value(Point<dim>(), v);
+                for (unsigned int d = 0; d < dim; ++d)
+                  T[d] = v[d];
               }
-            if (all)
-              c.set_inhomogeneity(dof, target[dof] - interpolated);
+            r.rotation->set_time(t);
+            const double theta = r.rotation->value(Point<dim>());
+            std::map<types::global_dof_index, double> target;
+            for (const auto &[dof, comp, X] : r.dofs)
+              {
+                const Tensor<1, dim> x =
+                  r.center + T + rotate<dim>(X - r.center, r.axis, theta);
+                target[dof] = x[comp] - X[comp];
+              }
+            for (const auto &[dof, comp, X] : r.dofs)
+              {
+                if (!c.can_store_line(dof))
+                  continue;
+                if (!c.is_constrained(dof))
+                  {
+                    c.add_line(dof);
+                    c.set_inhomogeneity(dof, target[dof]);
+                    continue;
+                  }
+                // A hanging node, u_h = sum w_j u_j: on a curved surface it
+                // does not lie on the straight edge between its parents, so
+                // the parents' rigid motion does not move it rigidly under a
+                // rotation (measured 5e-3 on the rigid sphere of
+                // hertz-3d-elastic.prm turned by pi/2). The inhomogeneity
+                // makes it exact: u_h = sum w_j u_j + (u_h* - sum w_j u_j*).
+                const auto *entries = c.get_constraint_entries(dof);
+                if (!entries || entries->empty())
+                  continue;
+                double interpolated = 0.;
+                bool   all          = true;
+                for (const auto &[j, w] : *entries)
+                  {
+                    const auto it = target.find(j);
+                    all           = all && it != target.end();
+                    if (it != target.end())
+                      interpolated += w * it->second;
+                  }
+                if (all)
+                  c.set_inhomogeneity(dof, target[dof] - interpolated);
+              }
+          }
+        if (axisymmetric)
+          {
+            // u_r = 0 on the axis r = 0: regularity of a solid of revolution.
+            const double tol = 1e-10 * mesh.scene_size();
+            std::vector<types::global_dof_index> dofs(fe.n_dofs_per_face());
+            for (const auto &cell : dof_handler.active_cell_iterators())
+              if (!cell->is_artificial())
+                for (const auto f : cell->face_indices())
+                  {
+                    const auto face    = cell->face(f);
+                    bool       on_axis = true;
+                    for (const auto v : face->vertex_indices())
+                      on_axis = on_axis && std::abs(face->vertex(v)[0]) < tol;
+                    if (!on_axis)
+                      continue;
+                    face->get_dof_indices(dofs);
+                    for (unsigned int i = 0; i < dofs.size(); ++i)
+                      if (fe.face_system_to_component_index(i).first == 0 &&
+                          c.can_store_line(dofs[i]) &&
+                          !c.is_constrained(dofs[i]))
+                        c.add_line(dofs[i]);
+                  }
           }
       }
-    if (axisymmetric)
+    catch (const InputError &e)
       {
-        // u_r = 0 on the axis r = 0: regularity of a solid of revolution.
-        const double                         tol = 1e-10 * mesh.scene_size();
-        std::vector<types::global_dof_index> dofs(fe.n_dofs_per_face());
-        for (const auto &cell : dof_handler.active_cell_iterators())
-          if (!cell->is_artificial())
-            for (const auto f : cell->face_indices())
-              {
-                const auto face    = cell->face(f);
-                bool       on_axis = true;
-                for (const auto v : face->vertex_indices())
-                  on_axis = on_axis && std::abs(face->vertex(v)[0]) < tol;
-                if (!on_axis)
-                  continue;
-                face->get_dof_indices(dofs);
-                for (unsigned int i = 0; i < dofs.size(); ++i)
-                  if (fe.face_system_to_component_index(i).first == 0 &&
-                      c.can_store_line(dofs[i]) && !c.is_constrained(dofs[i]))
-                    c.add_line(dofs[i]);
-              }
+        input_failure = e.what();
       }
+    throw_input_error_on_any_process(input_failure, comm);
     c.close();
     return c;
   }
@@ -637,161 +670,175 @@ namespace glide
 
     // A failure on one process (an inverted element) must not leave the
     // others waiting in compress(): finish the loop, then agree.
-    std::string failure;
+    std::string failure, input_failure;
     for (const auto &cell : dof_handler.active_cell_iterators())
-      {
-        if (!cell->is_locally_owned())
-          continue;
-        fe_values.reinit(cell);
-        cell_matrix   = 0;
-        cell_rhs      = 0;
-        Material &law = *materials[cell->material_id()];
-        fe_values[u].get_function_gradients(U_ghost, grads);
-        if (axisymmetric)
-          fe_values[u].get_function_values(U_ghost, values);
-        const auto *body_force = body_forces[cell->material_id()].get();
+      try
+        {
+          if (!cell->is_locally_owned() || !input_failure.empty())
+            continue;
+          fe_values.reinit(cell);
+          cell_matrix   = 0;
+          cell_rhs      = 0;
+          Material &law = *materials[cell->material_id()];
+          fe_values[u].get_function_gradients(U_ghost, grads);
+          if (axisymmetric)
+            fe_values[u].get_function_values(U_ghost, values);
+          const auto *body_force = body_forces[cell->material_id()].get();
 
-        for (unsigned int q = 0; q < nq; ++q)
-          {
-            const Point<dim> &x = fe_values.quadrature_point(q);
-            const double      r = x[0];
-            const double      w =
-              fe_values.JxW(q) * (axisymmetric ? 2 * numbers::PI * r : 1.);
-            try
-              {
-                law.evaluate(embed<dim>(grads[q],
-                                        axisymmetric ? values[q][0] / r : 0.),
-                             P);
-              }
-            catch (const std::exception &e)
-              {
-                failure = e.what();
-                P       = 0;
-              }
+          for (unsigned int q = 0; q < nq; ++q)
+            {
+              const Point<dim> &x = fe_values.quadrature_point(q);
+              const double      r = x[0];
+              const double      w =
+                fe_values.JxW(q) * (axisymmetric ? 2 * numbers::PI * r : 1.);
+              try
+                {
+                  law.evaluate(embed<dim>(grads[q],
+                                          axisymmetric ? values[q][0] / r : 0.),
+                               P);
+                }
+              catch (const std::exception &e)
+                {
+                  failure = e.what();
+                  P       = 0;
+                }
 
-            Tensor<1, dim> b;
-            if (exact)
-              b = exact->body_force(x);
-            else if (body_force)
-              {
-                body_force->vector_value(x, load);
-                for (unsigned int d = 0; d < dim; ++d)
-                  b[d] = load[d];
-              }
+              Tensor<1, dim> b;
+              if (exact)
+                b = exact->body_force(x);
+              else if (body_force)
+                {
+                  body_force->vector_value(x, load);
+                  for (unsigned int d = 0; d < dim; ++d)
+                    b[d] = load[d];
+                }
 
-            for (unsigned int k = 0; k < n; ++k)
-              {
-                const unsigned int   c    = component[k];
-                const Tensor<1, dim> dphi = fe_values.shape_grad(k, q);
-                const double         phi  = fe_values.shape_value(k, q);
-                const double hoop = (axisymmetric && c == 0) ? phi / r : 0.;
-                if (F)
-                  {
-                    double v = 0;
-                    for (unsigned int j = 0; j < dim; ++j)
-                      v += P[c][j] * dphi[j];
-                    if (dim == 2)
-                      v += P[2][2] * hoop;
-                    cell_rhs(k) += (v - b[c] * phi) * w;
-                  }
-                if (tangent)
-                  {
-                    G[k] = 0;
-                    for (unsigned int j = 0; j < dim; ++j)
-                      G[k][c][j] = dphi[j];
-                    if (dim == 2)
-                      G[k][2][2] = hoop;
-                  }
-              }
-            if (tangent)
-              {
-                for (unsigned int l = 0; l < n; ++l)
-                  AG[l] = law.tangent(G[l]);
-                for (unsigned int k = 0; k < n; ++k)
-                  {
-                    const unsigned int c = component[k];
-                    for (unsigned int l = 0; l < n; ++l)
-                      {
-                        double v = 0;
-                        for (unsigned int j = 0; j < dim; ++j)
-                          v += AG[l][c][j] * G[k][c][j];
-                        if (dim == 2)
-                          v += AG[l][2][2] * G[k][2][2];
-                        cell_matrix(k, l) += v * w;
-                      }
-                  }
-              }
-          }
+              for (unsigned int k = 0; k < n; ++k)
+                {
+                  const unsigned int   c    = component[k];
+                  const Tensor<1, dim> dphi = fe_values.shape_grad(k, q);
+                  const double         phi  = fe_values.shape_value(k, q);
+                  const double hoop = (axisymmetric && c == 0) ? phi / r : 0.;
+                  if (F)
+                    {
+                      double v = 0;
+                      for (unsigned int j = 0; j < dim; ++j)
+                        v += P[c][j] * dphi[j];
+                      if (dim == 2)
+                        v += P[2][2] * hoop;
+                      cell_rhs(k) += (v - b[c] * phi) * w;
+                    }
+                  if (tangent)
+                    {
+                      G[k] = 0;
+                      for (unsigned int j = 0; j < dim; ++j)
+                        G[k][c][j] = dphi[j];
+                      if (dim == 2)
+                        G[k][2][2] = hoop;
+                    }
+                }
+              if (tangent)
+                {
+                  for (unsigned int l = 0; l < n; ++l)
+                    AG[l] = law.tangent(G[l]);
+                  for (unsigned int k = 0; k < n; ++k)
+                    {
+                      const unsigned int c = component[k];
+                      for (unsigned int l = 0; l < n; ++l)
+                        {
+                          double v = 0;
+                          for (unsigned int j = 0; j < dim; ++j)
+                            v += AG[l][c][j] * G[k][c][j];
+                          if (dim == 2)
+                            v += AG[l][2][2] * G[k][2][2];
+                          cell_matrix(k, l) += v * w;
+                        }
+                    }
+                }
+            }
 
-        // Tractions and pressures (dead loads on the reference surface).
-        if (F && !surface_loads.empty())
-          for (const auto f : cell->face_indices())
-            if (cell->face(f)->at_boundary())
-              for (const auto &l : surface_loads)
-                if (l.ids.count(cell->face(f)->boundary_id()))
-                  {
-                    fe_face.reinit(cell, f);
-                    for (unsigned int q = 0; q < face_quadrature.size(); ++q)
-                      {
-                        const Point<dim> &x = fe_face.quadrature_point(q);
-                        const double      w =
-                          fe_face.JxW(q) *
-                          (axisymmetric ? 2 * numbers::PI * x[0] : 1.);
-                        Tensor<1, dim> tr;
-                        if (l.parameters->type ==
-                            BoundaryConditionType::pressure)
-                          tr = -l.function->value(x) * fe_face.normal_vector(q);
-                        else
-                          {
-                            l.function->vector_value(x, load);
-                            for (unsigned int d = 0; d < dim; ++d)
-                              tr[d] = load[d];
-                          }
-                        for (unsigned int k = 0; k < n; ++k)
-                          cell_rhs(k) -=
-                            tr[component[k]] * fe_face.shape_value(k, q) * w;
-                      }
-                  }
+          // Tractions and pressures (dead loads on the reference surface).
+          if (F && !surface_loads.empty())
+            for (const auto f : cell->face_indices())
+              if (cell->face(f)->at_boundary())
+                for (const auto &l : surface_loads)
+                  if (l.ids.count(cell->face(f)->boundary_id()))
+                    {
+                      fe_face.reinit(cell, f);
+                      for (unsigned int q = 0; q < face_quadrature.size(); ++q)
+                        {
+                          const Point<dim> &x = fe_face.quadrature_point(q);
+                          const double      w =
+                            fe_face.JxW(q) *
+                            (axisymmetric ? 2 * numbers::PI * x[0] : 1.);
+                          Tensor<1, dim> tr;
+                          if (l.parameters->type ==
+                              BoundaryConditionType::pressure)
+                            tr =
+                              -l.function->value(x) * fe_face.normal_vector(q);
+                          else
+                            {
+                              l.function->vector_value(x, load);
+                              for (unsigned int d = 0; d < dim; ++d)
+                                tr[d] = load[d];
+                            }
+                          for (unsigned int k = 0; k < n; ++k)
+                            cell_rhs(k) -=
+                              tr[component[k]] * fe_face.shape_value(k, q) * w;
+                        }
+                    }
 
-        cell->get_dof_indices(dofs);
-        if (F && increment)
-          {
-            Vector<double> d(n), Kd(n);
-            for (unsigned int k = 0; k < n; ++k)
-              d(k) = D_ghost[dofs[k]];
-            cell_matrix.vmult(Kd, d);
-            cell_rhs += Kd;
-          }
-        if (F && J)
-          constraints.distribute_local_to_global(
-            cell_matrix, cell_rhs, dofs, *J, *F);
-        else if (F)
-          constraints.distribute_local_to_global(cell_rhs, dofs, *F);
-        else
-          constraints.distribute_local_to_global(cell_matrix, dofs, *J);
-      }
+          cell->get_dof_indices(dofs);
+          if (F && increment)
+            {
+              Vector<double> d(n), Kd(n);
+              for (unsigned int k = 0; k < n; ++k)
+                d(k) = D_ghost[dofs[k]];
+              cell_matrix.vmult(Kd, d);
+              cell_rhs += Kd;
+            }
+          if (F && J)
+            constraints.distribute_local_to_global(
+              cell_matrix, cell_rhs, dofs, *J, *F);
+          else if (F)
+            constraints.distribute_local_to_global(cell_rhs, dofs, *F);
+          else
+            constraints.distribute_local_to_global(cell_matrix, dofs, *J);
+        }
+      catch (const InputError &e)
+        {
+          // A function of the scene that is not finite here: finish the
+          // loop (the other processes wait in compress()), then agree.
+          input_failure = e.what();
+        }
 
     // Concentrated forces at vertices.
-    if (F)
+    if (F && input_failure.empty())
       for (const auto &pf : point_forces)
-        {
-          pf.function->set_time(t);
-          for (const auto &[node_dofs, x] : pf.nodes)
-            {
-              pf.function->vector_value(x, load);
-              std::vector<types::global_dof_index> idx(node_dofs.begin(),
-                                                       node_dofs.end());
-              Vector<double>                       f(dim);
-              for (unsigned int d = 0; d < dim; ++d)
-                f[d] = -load[d];
-              constraints.distribute_local_to_global(f, idx, *F);
-            }
-        }
+        try
+          {
+            pf.function->set_time(t);
+            for (const auto &[node_dofs, x] : pf.nodes)
+              {
+                pf.function->vector_value(x, load);
+                std::vector<types::global_dof_index> idx(node_dofs.begin(),
+                                                         node_dofs.end());
+                Vector<double>                       f(dim);
+                for (unsigned int d = 0; d < dim; ++d)
+                  f[d] = -load[d];
+                constraints.distribute_local_to_global(f, idx, *F);
+              }
+          }
+        catch (const InputError &e)
+          {
+            input_failure = e.what();
+          }
 
     if (F)
       F->compress(VectorOperation::add);
     if (J)
       J->compress(VectorOperation::add);
+    throw_input_error_on_any_process(input_failure, comm);
     throw_on_any_process(failure, comm);
   }
 
@@ -957,6 +1004,385 @@ namespace glide
       e.push_back("manufactured solution (" + scene.manufactured_solution +
                   ")");
     return e;
+  }
+
+
+  namespace
+  {
+    /// Numbers for messages: short, and -0 printed as 0.
+    std::string
+    short_number(const double x)
+    {
+      std::ostringstream s;
+      s << std::setprecision(4) << (std::abs(x) < 1e-12 ? 0. : x);
+      return s.str();
+    }
+
+    /**
+     * A basis of the null space of the symmetric positive semi-definite
+     * matrix @p G (at most 6 x 6), from its reduced row echelon form with
+     * relative pivot tolerance @p tolerance: one vector per free column,
+     * with 1 there. Columns are eliminated in their order, so later
+     * columns (rotations) become the free ones and each free vector names
+     * one rotation together with the translations that make it a rotation
+     * about a point; a zero column (a translation nothing stops) gives a
+     * pure translation.
+     */
+    std::vector<std::vector<double>>
+    null_space(FullMatrix<double> G, const double tolerance)
+    {
+      const unsigned int n     = G.m();
+      double             scale = 0;
+      for (unsigned int i = 0; i < n; ++i)
+        scale = std::max(scale, std::abs(G(i, i)));
+      std::vector<int> pivot_of_column(n, -1);
+      unsigned int     row = 0;
+      for (unsigned int col = 0; col < n && row < n; ++col)
+        {
+          unsigned int best = row;
+          for (unsigned int r = row; r < n; ++r)
+            if (std::abs(G(r, col)) > std::abs(G(best, col)))
+              best = r;
+          if (!(std::abs(G(best, col)) > tolerance * scale))
+            continue;
+          for (unsigned int k = 0; k < n; ++k)
+            std::swap(G(row, k), G(best, k));
+          const double p = G(row, col);
+          for (unsigned int k = 0; k < n; ++k)
+            G(row, k) /= p;
+          for (unsigned int r = 0; r < n; ++r)
+            if (r != row && G(r, col) != 0.)
+              {
+                const double f = G(r, col);
+                for (unsigned int k = 0; k < n; ++k)
+                  G(r, k) -= f * G(row, k);
+              }
+          pivot_of_column[col] = row++;
+        }
+      std::vector<std::vector<double>> basis;
+      for (unsigned int free = 0; free < n; ++free)
+        if (pivot_of_column[free] < 0)
+          {
+            std::vector<double> v(n, 0.);
+            v[free] = 1.;
+            for (unsigned int col = 0; col < n; ++col)
+              if (pivot_of_column[col] >= 0)
+                v[col] = -G(pivot_of_column[col], free);
+            basis.push_back(v);
+          }
+      return basis;
+    }
+  } // namespace
+
+  template <int dim>
+  std::vector<std::vector<std::string>>
+  Elasticity<dim>::free_motions() const
+  {
+    // The rigid-body motions of a body: translations, and rotations
+    // about its center c scaled by its size L (so that every mode is of
+    // order 1 on the body): 2D x, y, z-rotation; axisymmetric only the
+    // axial translation (a radial "translation" strains the hoops); 3D x,
+    // y, z and rotations about x, y, z. A motion is free if no Dirichlet
+    // constraint (fixed, displacement, symmetry, u_r = 0 on the axis, a
+    // meshed rigid body) acts against it: the null space of the Gram
+    // matrix G = sum over the body's constrained vertex DoFs of m m^T,
+    // with m the values of the modes there.
+    const unsigned int  n_bodies = scene.bodies.size();
+    const unsigned int  n_modes  = axisymmetric ? 1 : dim * (dim + 1) / 2;
+    std::vector<double> lower(n_bodies * dim,
+                              std::numeric_limits<double>::max()),
+      upper(n_bodies * dim, -std::numeric_limits<double>::max());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const auto v : cell->vertex_indices())
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const unsigned int k = cell->material_id() * dim + d;
+              lower[k]             = std::min(lower[k], cell->vertex(v)[d]);
+              upper[k]             = std::max(upper[k], cell->vertex(v)[d]);
+            }
+    Utilities::MPI::min(lower, comm, lower);
+    Utilities::MPI::max(upper, comm, upper);
+
+    const auto mode_values = [&](const unsigned int b,
+                                 const Point<dim>  &x,
+                                 const unsigned int c) {
+      std::vector<double> m(n_modes, 0.);
+      if (axisymmetric)
+        {
+          m[0] = (c == 1);
+          return m;
+        }
+      Tensor<1, dim> r;
+      double         L = 0;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double center = 0.5 * (lower[b * dim + d] + upper[b * dim + d]);
+          r[d]                = x[d] - center;
+          L = std::max(L, 0.5 * (upper[b * dim + d] - lower[b * dim + d]));
+        }
+      r /= (L > 0 ? L : 1.);
+      m[c] = 1.;
+      if (dim == 2)
+        m[2] = (c == 0 ? -r[1] : r[0]);
+      else
+        {
+          // omega x r for omega = e_x, e_y, e_z
+          const unsigned int next[3] = {1, 2, 0}, prev[3] = {2, 0, 1};
+          for (unsigned int a = 0; a < 3; ++a)
+            {
+              if (c == next[a])
+                m[dim + a] = -r[prev[a]];
+              else if (c == prev[a])
+                m[dim + a] = r[next[a]];
+            }
+        }
+      return m;
+    };
+
+    std::vector<double> gram(n_bodies * n_modes * n_modes, 0.);
+    std::vector<bool>   seen(owned.n_elements(), false);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const auto v : cell->vertex_indices())
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              const auto i = cell->vertex_dof_index(v, c);
+              if (!owned.is_element(i) || seen[owned.index_within_set(i)])
+                continue;
+              seen[owned.index_within_set(i)] = true;
+              if (!homogeneous_constraints.is_constrained(i))
+                continue;
+              const auto *entries =
+                homogeneous_constraints.get_constraint_entries(i);
+              if (entries && !entries->empty())
+                continue; // a hanging node, not a support
+              const auto m =
+                mode_values(cell->material_id(), cell->vertex(v), c);
+              double *G = &gram[cell->material_id() * n_modes * n_modes];
+              for (unsigned int a = 0; a < n_modes; ++a)
+                for (unsigned int b = 0; b < n_modes; ++b)
+                  G[a * n_modes + b] += m[a] * m[b];
+            }
+    Utilities::MPI::sum(gram, comm, gram);
+
+    const char                           *axis[] = {"x", "y", "z"};
+    std::vector<std::vector<std::string>> result(n_bodies);
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      {
+        if (scene.bodies[b].rigid)
+          continue;
+        FullMatrix<double> G(n_modes, n_modes);
+        for (unsigned int i = 0; i < n_modes; ++i)
+          for (unsigned int j = 0; j < n_modes; ++j)
+            G(i, j) = gram[(b * n_modes + i) * n_modes + j];
+        // Relative pivot tolerance: a single constrained vertex stops a
+        // translation with a pivot of order 1; rounding is 1e-16.
+        for (const auto &v : null_space(G, 1e-10))
+          {
+            if (axisymmetric)
+              {
+                result[b].push_back("translation along the axis (y)");
+                continue;
+              }
+            Point<dim> center;
+            double     L = 0;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                center[d] = 0.5 * (lower[b * dim + d] + upper[b * dim + d]);
+                L =
+                  std::max(L, 0.5 * (upper[b * dim + d] - lower[b * dim + d]));
+              }
+            L = (L > 0 ? L : 1.);
+            Tensor<1, dim> t;
+            for (unsigned int d = 0; d < dim; ++d)
+              t[d] = v[d];
+            Tensor<1, 3> w; // the rotation rate, physical units
+            for (unsigned int a = dim; a < n_modes; ++a)
+              w[dim == 2 ? 2 : a - dim] = v[a] / L;
+            if (w.norm() * L < 1e-8 * t.norm())
+              {
+                t /= t.norm();
+                unsigned int nonzero = 0, along = 0;
+                for (unsigned int d = 0; d < dim; ++d)
+                  if (std::abs(t[d]) > 1e-8)
+                    {
+                      ++nonzero;
+                      along = d;
+                    }
+                if (nonzero == 1)
+                  result[b].push_back(std::string("translation in ") +
+                                      axis[along]);
+                else
+                  {
+                    std::string direction;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      direction += (d ? ", " : "") + short_number(t[d]);
+                    result[b].push_back("translation along (" + direction +
+                                        ")");
+                  }
+                continue;
+              }
+            // The points that do not move: t + w x (x - c) = 0, i.e.
+            // x = c + (w x t) / |w|^2 on the axis along w.
+            Tensor<1, 3> t3;
+            for (unsigned int d = 0; d < dim; ++d)
+              t3[d] = t[d];
+            const Tensor<1, 3> p = cross_product_3d(w, t3) / (w * w);
+            std::string        point;
+            for (unsigned int d = 0; d < dim; ++d)
+              point += (d ? ", " : "") + short_number(center[d] + p[d]);
+            if (dim == 2)
+              result[b].push_back("rotation about z around (" + point + ")");
+            else
+              {
+                const Tensor<1, 3> n = w / w.norm();
+                std::string        direction;
+                for (unsigned int d = 0; d < 3; ++d)
+                  direction += (d ? ", " : "") + short_number(n[d]);
+                result[b].push_back("rotation about the axis along (" +
+                                    direction + ") through (" + point + ")");
+              }
+          }
+      }
+    return result;
+  }
+
+  template <int dim>
+  void
+  Elasticity<dim>::check_inputs()
+  {
+    const std::string file = "In scene file '" + scene.file + "': ";
+
+    // A scene that neither loads nor moves anything has the solution 0;
+    // that is almost certainly a scene whose loads were forgotten.
+    bool loaded =
+      !scene.contact_pairs.empty() || scene.manufactured_solution != "none";
+    for (const auto &bc : scene.boundary_conditions)
+      loaded = loaded ||
+               !(bc.type == BoundaryConditionType::fixed || bc.is_symmetry());
+    for (const auto &b : scene.bodies)
+      loaded = loaded || !b.body_force.empty() || b.rigid;
+    require(loaded,
+            file +
+              "The scene has nothing that loads or moves its bodies (no "
+              "displacement, traction, pressure, force or body force, no "
+              "rigid-body motion, no contact pair): its solution is zero. Add "
+              "a load in a 'Boundary condition' subsection (see 'Boundary "
+              "conditions').");
+
+
+    // Bodies in a contact pair: contact may hold them (if it closes).
+    std::set<std::string> in_contact;
+    bool                  node_set_slave = false;
+    for (const auto &cp : scene.contact_pairs)
+      for (const auto &list : {cp.slave, cp.master})
+        for (const auto &surface : Utilities::split_string_list(list, ','))
+          {
+            if (scene_node_sets.count(surface))
+              node_set_slave = true;
+            const auto dot = surface.find('.');
+            if (dot != std::string::npos)
+              in_contact.insert(surface.substr(0, dot));
+          }
+    const auto motions = free_motions();
+    holding_hints.clear();
+    for (unsigned int b = 0; b < scene.bodies.size(); ++b)
+      {
+        if (motions[b].empty())
+          continue;
+        std::string list;
+        for (unsigned int i = 0; i < motions[b].size(); ++i)
+          list += (i == 0                     ? "" :
+                   i + 1 == motions[b].size() ? " and " :
+                                                ", ") +
+                  motions[b][i];
+        const std::string &name = scene.bodies[b].name;
+        if (in_contact.count(name) || node_set_slave)
+          {
+            holding_hints.push_back(
+              "body '" + name + "' is held against its " + list +
+              " only by contact: while that contact is open nothing holds "
+              "it, and the Newton systems are singular. Let the contact "
+              "close from the first load step (start in contact or move "
+              "the body into it by a prescribed displacement), or add a "
+              "boundary condition that stops these motions (e.g. a "
+              "symmetry condition).");
+            continue;
+          }
+        throw InputError(
+          file + "Body '" + name + "' is not held: nothing stops its " + list +
+          " (no fixed, displacement or symmetry condition acts against "
+          "them, and the body is in no contact pair), so the equilibrium "
+          "has no unique solution. Add a boundary condition that holds it, "
+          "e.g. 'Type = fixed' on one surface of '" +
+          name + "', or symmetry conditions.");
+      }
+
+    // Every function of the scene is finite at the first and the last
+    // load factor (CheckedFunction throws otherwise), before anything is
+    // written; the values in between are checked as they are used.
+    const double first = 1. / scene.load_stepping.number_of_steps;
+    for (const double t : {first, 1.})
+      {
+        constraints_at(t);
+        VectorType U(owned_total, comm), F(owned_total, comm);
+        residual(U, t, F);
+      }
+
+    // Stiffnesses that double precision cannot resolve together.
+    double      E_min = std::numeric_limits<double>::infinity(), E_max = 0;
+    std::string soft, stiff;
+    for (const auto &b : scene.bodies)
+      if (!b.rigid)
+        {
+          if (b.material.youngs_modulus < E_min)
+            {
+              E_min = b.material.youngs_modulus;
+              soft  = b.name;
+            }
+          if (b.material.youngs_modulus > E_max)
+            {
+              E_max = b.material.youngs_modulus;
+              stiff = b.name;
+            }
+        }
+    // 1e12: the forces in the softest body are then 1e-12 of those in the
+    // stiffest; with 16 digits in double precision the solver tolerance
+    // (1e-8 and finer) can no longer be met for both. Make the stiff body
+    // rigid instead ('Rigid body/Rigid = true').
+    constexpr double maximum_stiffness_ratio = 1e12;
+    require(!(E_max > maximum_stiffness_ratio * E_min),
+            file + "Young's moduli of 'Body " + stiff + "' (" +
+              short_number(E_max) + ") and 'Body " + soft + "' (" +
+              short_number(E_min) + ") differ by more than a factor of " +
+              short_number(maximum_stiffness_ratio) +
+              ": double precision cannot resolve both bodies' forces. Make "
+              "the stiff body rigid ('Rigid body/Rigid = true') instead.");
+    const double L = mesh.scene_size();
+    for (const auto &cp : scene.contact_pairs)
+      if (cp.enforcement == Enforcement::penalty && cp.penalty_stiffness > 0)
+        require(!(cp.penalty_stiffness * L >
+                  maximum_stiffness_ratio * (E_max > 0 ? E_max : E_min)),
+                file + "Parameter 'Contact pair " + cp.name +
+                  "/Penalty stiffness' = " +
+                  short_number(cp.penalty_stiffness) + " is more than " +
+                  short_number(maximum_stiffness_ratio) +
+                  " times the stiffness of the bodies (Young's modulus " +
+                  short_number(E_max) + " / scene size " + short_number(L) +
+                  "): double precision cannot resolve the bodies next to "
+                  "it. Use 0 (automatic), or hard contact ('Enforcement = "
+                  "hard').");
+  }
+
+  template <int dim>
+  std::string
+  Elasticity<dim>::holding_hint() const
+  {
+    std::string hint;
+    for (const auto &h : holding_hints)
+      hint += "\nNote: " + h;
+    return hint;
   }
 
   template class Elasticity<2>;

@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <stdexcept>
 #include <tuple>
 
 namespace glide
@@ -14,15 +13,15 @@ namespace glide
 
   namespace
   {
-    /// Rename @p from to @p to, or throw naming both.
-    void
+    /// Rename @p from to @p to; on failure, the message naming both.
+    std::string
     rename_file(const std::string &from, const std::string &to)
     {
       std::error_code error;
       std::filesystem::rename(from, to, error);
-      if (error)
-        throw std::runtime_error("cannot rename '" + from + "' to '" + to +
-                                 "': " + error.message());
+      return error ? "cannot rename '" + from + "' to '" + to +
+                       "': " + error.message() :
+                     "";
     }
   } // namespace
 
@@ -32,7 +31,7 @@ namespace glide
   {}
 
   template <int dim>
-  void
+  std::string
   ContactWriter<dim>::write(const std::vector<ContactPairFields<dim>> &pairs,
                             const unsigned int                         step,
                             const double                               time,
@@ -70,10 +69,12 @@ namespace glide
                 out << "," << n.CSLIP_components[a];
               out << "\n";
             }
+          out.close();
           if (!out)
-            throw std::runtime_error("cannot write '" + csv + ".tmp'");
+            return "cannot write '" + csv + ".tmp'";
         }
-        rename_file(csv + ".tmp", csv);
+        if (const auto e = rename_file(csv + ".tmp", csv); !e.empty())
+          return e;
 
         if (!vtu)
           continue;
@@ -149,11 +150,15 @@ namespace glide
         {
           std::ofstream out(stem + ".pvd.tmp");
           DataOutBase::write_pvd_record(out, list);
+          out.close();
           if (!out)
-            throw std::runtime_error("cannot write '" + stem + ".pvd.tmp'");
+            return "cannot write '" + stem + ".pvd.tmp'";
         }
-        rename_file(stem + ".pvd.tmp", stem + ".pvd");
+        if (const auto e = rename_file(stem + ".pvd.tmp", stem + ".pvd");
+            !e.empty())
+          return e;
       }
+    return "";
   }
 
   template class ContactWriter<2>;

@@ -13,7 +13,10 @@ namespace glide
                       Patterns::DirectoryName(),
                       "Results go to <Directory>/<Scene name>/: "
                       "<name>-NNNN.vtu per output step, <name>.pvd, "
-                      "statistics.csv. Relative to the current directory.");
+                      "statistics.csv. Relative to the current directory. "
+                      "glide lists the files it writes there in "
+                      ".glide-output and never deletes or overwrites any "
+                      "other file.");
     prm.declare_entry("Write VTU",
                       "true",
                       Patterns::Bool(),

@@ -3,12 +3,15 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 
+#include <ostream>
 #include <sstream>
 
 namespace glide
 {
-  Statistics::Statistics(const std::string &filename, MPI_Comm comm)
-    : filename(filename)
+  const char *const Statistics::file_name = "statistics.csv";
+
+  Statistics::Statistics(OutputDirectory &output, MPI_Comm comm)
+    : output(output)
     , writer(dealii::Utilities::MPI::this_mpi_process(comm) == 0)
   {}
 
@@ -19,22 +22,24 @@ namespace glide
     if (!writer)
       return;
     if (header.empty())
-      {
-        out.open(filename);
-        if (!out)
-          throw std::runtime_error("cannot write the statistics table '" +
-                                   filename + "'");
-        for (const auto &[name, value] : row)
-          header.push_back(name);
-        for (unsigned int i = 0; i < header.size(); ++i)
-          out << (i ? "," : "") << header[i];
-        out << '\n';
-      }
+      for (const auto &[name, value] : row)
+        header.push_back(name);
     AssertThrow(row.size() == header.size(), dealii::ExcInternalError());
     for (unsigned int i = 0; i < row.size(); ++i)
-      out << (i ? "," : "") << row[i].second;
-    out << '\n';
-    out.flush();
+      rows += (i ? "," : "") + row[i].second;
+    rows += '\n';
+  }
+
+  void
+  Statistics::write()
+  {
+    if (!writer || header.empty())
+      return;
+    output.write_index(file_name, [&](std::ostream &out) {
+      for (unsigned int i = 0; i < header.size(); ++i)
+        out << (i ? "," : "") << header[i];
+      out << '\n' << rows;
+    });
   }
 
   std::string

@@ -1,10 +1,13 @@
+#include <glide/output/output_error.h>
 #include <glide/output/vtu_writer.h>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -113,10 +116,10 @@ namespace glide
 
   template <int dim>
   VtuWriter<dim>::VtuWriter(const Elasticity<dim> &elasticity,
-                            const std::string     &directory,
+                            OutputDirectory       &output,
                             const std::string     &name)
     : elasticity(elasticity)
-    , directory(directory)
+    , output(output)
     , name(name)
   {}
 
@@ -159,21 +162,73 @@ namespace glide
     char number[16];
     std::snprintf(number, sizeof(number), "%04u", step);
     const std::string file = name + "-" + number + ".vtu";
-    const std::string path = directory + "/" + file;
-    data_out.write_vtu_in_parallel(path + ".tmp", comm);
-    MPI_Barrier(comm);
-    if (Utilities::MPI::this_mpi_process(comm) == 0)
-      {
-        std::filesystem::rename(path + ".tmp", path);
-        records.emplace_back(time, file);
-        const std::string pvd = directory + "/" + name + ".pvd";
+    const std::string tmp  = output.path() + "/" + file + ".tmp";
+    const bool        root = Utilities::MPI::this_mpi_process(comm) == 0;
+    std::string       failure;
+    if (root)
+      try
         {
-          std::ofstream out(pvd + ".tmp");
-          DataOutBase::write_pvd_record(out, records);
+          output.claim(file);
         }
-        std::filesystem::rename(pvd + ".tmp", pvd);
+      catch (const std::exception &e)
+        {
+          failure = e.what();
+        }
+    throw_output_error_on_any_process(failure, comm);
+    try
+      {
+        if (Utilities::MPI::n_mpi_processes(comm) == 1)
+          {
+            // One process: a stream whose state tells whether the disk
+            // took every byte.
+            std::ofstream out(tmp, std::ios::binary);
+            data_out.write_vtu(out);
+            out.close();
+            if (out.fail())
+              failure = "Cannot write '" + output.path() + "/" + file +
+                        "': " + std::strerror(errno ? errno : EIO) +
+                        (errno == ENOSPC ? "; the disk is full: free space "
+                                           "there or choose another "
+                                           "'Output/Directory'" :
+                                           "") +
+                        ".";
+          }
+        else
+          data_out.write_vtu_in_parallel(tmp, comm);
       }
-    MPI_Barrier(comm);
+    catch (const std::exception &)
+      {
+        failure = "Cannot write '" + output.path() + "/" + file +
+                  "' (is the disk full?).";
+      }
+    if (root && !failure.empty())
+      {
+        std::error_code ec;
+        std::filesystem::remove(tmp, ec);
+      }
+    throw_output_error_on_any_process(failure, comm);
+    if (root)
+      try
+        {
+          output.publish(file);
+          records.emplace_back(time, file);
+        }
+      catch (const std::exception &e)
+        {
+          failure = e.what();
+        }
+    throw_output_error_on_any_process(failure, comm);
+  }
+
+  template <int dim>
+  void
+  VtuWriter<dim>::write_pvd()
+  {
+    if (records.empty())
+      return;
+    output.write_index(name + ".pvd", [&](std::ostream &out) {
+      DataOutBase::write_pvd_record(out, records);
+    });
   }
 
   template class VtuWriter<2>;

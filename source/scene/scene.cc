@@ -3,10 +3,15 @@
 #include <glide/scene/scene.h>
 
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <set>
 #include <sstream>
 
@@ -64,6 +69,49 @@ namespace glide
         }
     }
 
+    /**
+     * The scene name becomes a directory under 'Output/Directory' and the
+     * prefix of every file glide writes: it must stay inside that
+     * directory and must not be a dot-name ('.' once made glide write into
+     * the output directory itself, '../x' outside it).
+     */
+    void
+    check_scene_name(const std::string &name,
+                     const std::string &file,
+                     const std::string &stem)
+    {
+      const std::string where = "In scene file '" + file + "': ";
+      require(!name.empty(),
+              where +
+                "the scene name is empty: it defaults to the scene "
+                "file's name without extension, which is empty for '" +
+                file + "'. Set 'Scene name', e.g. 'set Scene name = run1'.");
+      const bool        from_file = (name == stem);
+      const std::string what =
+        from_file ? "the scene name '" + name +
+                      "' (the scene file's name without extension)" :
+                    "parameter 'Scene name' = '" + name + "'";
+      require(name.find('/') == std::string::npos &&
+                name.find('\\') == std::string::npos,
+              where + what +
+                " contains a path separator; the results go to "
+                "<Output/Directory>/<Scene name>/, so choose the directory "
+                "with 'Output/Directory' and a plain name here, e.g. "
+                "'hertz-fine'.");
+      require(name[0] != '.',
+              where + what +
+                " starts with '.'; names such as '.', '..' or '.hidden' "
+                "would put the results into the output directory itself, "
+                "outside it, or hide them. Use a plain name, e.g. "
+                "'hertz-fine'" +
+                (from_file ? " (set 'Scene name')." : "."));
+      for (const char c : name)
+        require(static_cast<unsigned char>(c) >= 0x20 && c != 0x7f,
+                where + what +
+                  " contains a control character; use letters, digits, "
+                  "'-' and '_'.");
+    }
+
     const std::vector<std::string> example_bodies{"body"};
     const std::vector<std::string> example_conditions{"example"};
     const std::vector<std::string> example_node_sets{"example"};
@@ -84,7 +132,8 @@ namespace glide
                       Patterns::Anything(),
                       "Name of the scene; results go to "
                       "<Output/Directory>/<Scene name>/. Empty: the scene "
-                      "file's name without extension.");
+                      "file's name without extension. A plain name: no '/' "
+                      "or '\\', not starting with '.'.");
     prm.declare_entry("Dimension",
                       "2",
                       Patterns::Integer(2, 3),
@@ -393,6 +442,8 @@ namespace glide
             "geometrically linear scene ('Discretization/Geometric "
             "nonlinearity = false').");
 
+    check_size();
+
     for (const auto &b : bodies)
       {
         b.mesh.check_sizes(dimension, "Body " + b.name);
@@ -417,6 +468,67 @@ namespace glide
                         "x = r >= 0; change 'Block/Lower corner'.");
           }
       }
+  }
+
+
+
+  void
+  Scene::check_size() const
+  {
+    // A lower bound of the memory the run needs, before the mesh is
+    // built: cells after global refinement (local refinement only adds),
+    // DoFs of the Lagrange elements, and the Jacobian's entries (12 bytes
+    // each: value and column index; (2p+1)^dim vertex neighbours per
+    // row and component) plus 200 bytes per cell (deal.II's and p4est's
+    // cell data). The direct solver's factors, the VTU output and the
+    // contact data come on top, so refusing when this bound exceeds the
+    // memory of the machine (times the number of processes, as if each
+    // had a machine of its own) never refuses a scene that would fit.
+    const double page = static_cast<double>(sysconf(_SC_PAGESIZE));
+    const double physical =
+      page * static_cast<double>(sysconf(_SC_PHYS_PAGES)) *
+      dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+    double      cells = 0, dofs = 0;
+    std::string largest;
+    double      largest_cells = 0;
+    for (const auto &b : bodies)
+      {
+        double coarse = 1; // round shapes: at least one coarse cell
+        if (b.mesh.type == "block")
+          for (const auto n : b.mesh.subdivisions)
+            coarse *= n;
+        const double n_cells =
+          coarse * std::pow(2., dimension * b.mesh.global_refinements);
+        cells += n_cells;
+        dofs += n_cells * std::pow(degree, dimension) * dimension;
+        if (n_cells > largest_cells)
+          {
+            largest_cells = n_cells;
+            largest       = b.name;
+          }
+      }
+    const double entries_per_row =
+      dimension * std::pow(2. * degree + 1., dimension);
+    const double       bytes = 200. * cells + 12. * entries_per_row * dofs;
+    std::ostringstream text;
+    text << std::setprecision(3) << "about " << cells << " cells and " << dofs
+         << " unknowns, at least " << bytes / (1 << 30) << " GiB of memory";
+    const std::string advice =
+      " Lower 'Body " + largest + "/Block/Subdivisions' or 'Body " + largest +
+      "/Refinement/Global refinements' (each global refinement multiplies "
+      "the cells by " +
+      std::to_string(1 << dimension) + "), or run on more machines with MPI.";
+    require(bytes <= physical,
+            "The mesh is too large for this machine: " + text.str() +
+              ", but the machine has " +
+              std::to_string(static_cast<long long>(physical / (1 << 30))) +
+              " GiB." + advice);
+    // deal.II's DoF and cell indices here are 32-bit.
+    require(dofs < 4.e9 && cells < 4.e9,
+            "The mesh is too large: " + text.str() +
+              "; this build of deal.II numbers cells and unknowns with "
+              "32-bit integers (at most about 4e9)." +
+              advice);
   }
 
 
@@ -448,8 +560,28 @@ namespace glide
           const auto eq = o.find('=');
           require(eq != std::string::npos,
                   "Command-line option --set '" + o +
-                    "' is not of the form \"Subsection/Entry=value\".");
-          const auto path  = Utilities::split_string_list(o.substr(0, eq), '/');
+                    "' is not of the form \"Subsection/Entry=value\" (it "
+                    "has no '='). Example: --set \"Body block/Material/"
+                    "Young's modulus=210e3\".");
+          // Every part of the path must name something: no empty entry,
+          // no empty subsection ('a//b', '/a', 'a/').
+          std::vector<std::string> path;
+          {
+            std::string rest = o.substr(0, eq) + "/";
+            for (auto slash = rest.find('/'); slash != std::string::npos;
+                 slash      = rest.find('/'))
+              {
+                     path.push_back(Utilities::trim(rest.substr(0, slash)));
+                     rest = rest.substr(slash + 1);
+              }
+          }
+          for (const auto &part : path)
+            require(!part.empty(),
+                    "Command-line option --set '" + o + "': the path '" +
+                      o.substr(0, eq) +
+                      "' has an empty part; write \"Subsection/Entry=value\" "
+                      "with the names that 'glide --print-parameters' "
+                      "shows.");
           const auto value = Utilities::trim(o.substr(eq + 1));
           try
             {
@@ -555,6 +687,11 @@ namespace glide
       }
     if (scene.name.empty())
       scene.name = stem;
+    check_scene_name(scene.name, filename, stem);
+    require(!scene.output.directory.empty(),
+            "In scene file '" + filename +
+              "': parameter 'Output/Directory' is empty; use '.' for the "
+              "current directory.");
     try
       {
         scene.check();

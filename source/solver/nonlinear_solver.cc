@@ -1,8 +1,13 @@
+#include <glide/output/interruption.h>
+#include <glide/output/output_error.h>
+#include <glide/scene/input_error.h>
 #include <glide/solver/nonlinear_solver.h>
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/sundials/kinsol.h>
 
+#include <cmath>
+#include <exception>
 #include <sstream>
 
 namespace glide
@@ -59,12 +64,34 @@ namespace glide
 
     // Exceptions must not cross KINSOL's C code: callbacks catch them and
     // return KINSOL's "recoverable" (1) or "fatal" (-1) codes instead.
+    // Errors that no retry can cure (an input error found while
+    // evaluating a function of the scene, an output error, a stop signal)
+    // end the solve and are rethrown after it.
+    std::exception_ptr fatal;
     kinsol.reinit_vector = cb.reinit_vector;
     kinsol.residual      = [&](const VectorType &u, VectorType &F) -> int {
       try
         {
+          throw_if_interrupted(comm);
           cb.residual(u, F);
+          // NaN or infinity: no step can mend it (KINSOL's line search
+          // would shrink the step forever).
+          if (!std::isfinite(F.linfty_norm()))
+            {
+              failure = "the residual is not finite (NaN or infinity)";
+              return -1;
+            }
           return 0;
+        }
+      catch (const InputError &)
+        {
+          fatal = std::current_exception();
+          return -1;
+        }
+      catch (const Interrupted &)
+        {
+          fatal = std::current_exception();
+          return -1;
         }
       catch (const std::exception &e)
         {
@@ -86,6 +113,9 @@ namespace glide
         {
           // deal.II 9.4.1 ignores this return value: remember the failure
           // so that the next linear solve refuses to run.
+          if (dynamic_cast<const InputError *>(&e) ||
+              dynamic_cast<const Interrupted *>(&e))
+            fatal = std::current_exception();
           failure      = e.what();
           setup_failed = true;
           return -1;
@@ -98,6 +128,12 @@ namespace glide
       try
         {
           result.linear_iterations += cb.solve_jacobian(rhs, dst);
+          if (!std::isfinite(dst.linfty_norm()))
+            {
+              failure = "the Newton update is not finite (NaN or infinity): "
+                        "the Jacobian is singular or overflows";
+              return -1;
+            }
           return 0;
         }
       catch (const std::exception &e)
@@ -123,6 +159,12 @@ namespace glide
         e.print_info(s);
         if (failure.empty())
           failure = s.str();
+      }
+
+    if (fatal)
+      {
+        U = guess;
+        std::rethrow_exception(fatal);
       }
 
     // Explicit convergence check (release builds do not report failure).

@@ -159,7 +159,7 @@ namespace glide
 
     /// Notes and warnings for the log since the last call (slave nodes
     /// without an anchor after setup(), R7.4; nodes that slid further than
-    /// small sliding allows after update_slip(), R12.2); empty on all but
+    /// small sliding allows after commit_step(), R12.2); empty on all but
     /// the first process.
     std::vector<std::string>
     take_messages();

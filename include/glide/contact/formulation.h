@@ -181,10 +181,10 @@ namespace glide
     virtual unsigned int
     n_held() const;
 
-    /// False where the Jacobian stabilization of open nodes must not be
-    /// used (see Contact::stabilization_weight()).
+    /// False where the Jacobian stabilization of the open constraint @p s
+    /// must not be used (see Contact::stabilization_weight()).
     virtual bool
-    stabilizable() const;
+    stabilizable(const Constraint<dim> &s) const;
 
     /// Constraints that fell back to a simpler formulation (R9.4).
     virtual unsigned int

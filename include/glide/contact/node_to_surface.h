@@ -67,7 +67,7 @@ namespace glide
     n_held() const override;
 
     bool
-    stabilizable() const override;
+    stabilizable(const Constraint<dim> &s) const override;
 
     void
     commit_step(const VectorType                   &U,

@@ -165,6 +165,28 @@ namespace glide
       return mesh.scene_size();
     }
 
+    /**
+     * Input checks that need the mesh and the constraints, before anything
+     * is written (InputError): every deformable body is held against each
+     * rigid-body motion by a Dirichlet condition or is in a contact pair;
+     * every function of the scene is finite at the first and the last load
+     * factor; the moduli and penalty stiffnesses stay within what double
+     * precision resolves together.
+     */
+    void
+    check_inputs();
+
+    /// For a failed load step: bodies that only contact holds, with the
+    /// motions nothing else stops (empty if every body is held).
+    std::string
+    holding_hint() const;
+
+    /// The rigid-body motions of each body that no Dirichlet condition
+    /// stops, described for people ("translation in x", "rotation about
+    /// z around (1, 0.5)"); empty for a held body and for rigid bodies.
+    std::vector<std::vector<std::string>>
+    free_motions() const;
+
     /// The list of effects this scene computes (P4.2), for the log.
     std::vector<std::string>
     active_effects() const;
@@ -314,6 +336,7 @@ namespace glide
     std::unique_ptr<ManufacturedSolution<dim>>                exact;
     std::vector<dealii::types::boundary_id>                   symmetry_ids[3];
     std::map<std::string, const NodeSetParameters *>          scene_node_sets;
+    std::vector<std::string>                                  holding_hints;
     double max_youngs_modulus = 1., min_youngs_modulus = 1.,
            reference_area = 1.;
     bool axisymmetric;

@@ -43,7 +43,9 @@ namespace glide
    * if asked, a VTU point set `contact-<pair>-NNNN.vtu` with the same
    * fields, the contact normal, the tangents and the displacement, listed
    * in `contact-<pair>.pvd` for ParaView. Every file is written under a
-   * temporary name and renamed when complete.
+   * temporary name and renamed when complete; Problem writes into the
+   * output's staging directory, which OutputDirectory checks and moves
+   * into place with the step's indexes (doc/output-and-faults.md).
    */
   template <int dim>
   class ContactWriter
@@ -51,8 +53,10 @@ namespace glide
   public:
     explicit ContactWriter(const std::string &directory);
 
-    /// Write step @p step at load factor @p time.
-    void
+    /// Write step @p step at load factor @p time. Returns what failed
+    /// (empty if nothing): the caller turns it into an OutputError on every
+    /// process, so that no process waits for one that failed alone.
+    std::string
     write(const std::vector<ContactPairFields<dim>> &pairs,
           const unsigned int                         step,
           const double                               time,

@@ -1,8 +1,9 @@
 #pragma once
 
+#include <glide/output/output_directory.h>
+
 #include <mpi.h>
 
-#include <fstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -11,24 +12,34 @@ namespace glide
 {
   /**
    * The per-step statistics table (P5): one CSV row per converged load
-   * step, written and flushed as soon as the step is done, so a run that is
-   * stopped part-way leaves complete rows. Tests and studies read this
-   * table, never the VTU files. Only rank 0 writes.
+   * step. add_row() keeps the row; write() writes the whole table as an
+   * index of OutputDirectory::commit_step() (under a temporary name, checked,
+   * renamed together with the `.pvd` files), so the table under its final
+   * name is always complete and lists the same steps as the `.pvd` files.
+   * Tests and studies read this table, never the VTU files. Only process 0
+   * writes.
    */
   class Statistics
   {
   public:
-    Statistics(const std::string &filename, MPI_Comm comm);
+    Statistics(OutputDirectory &output, MPI_Comm comm);
 
     /// Add one row; the columns of the first row fix the header.
     void
     add_row(const std::vector<std::pair<std::string, std::string>> &row);
 
+    /// Process 0, inside commit_step(): write the table as an index.
+    void
+    write();
+
+    /// The table's file name.
+    static const char *const file_name;
+
   private:
-    std::string              filename;
+    OutputDirectory         &output;
     bool                     writer;
     std::vector<std::string> header;
-    std::ofstream            out;
+    std::string              rows;
   };
 
   /// Format a number for the table with full precision.

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <glide/mechanics/elasticity.h>
+#include <glide/output/output_directory.h>
 
 #include <string>
 #include <utility>
@@ -12,25 +13,33 @@ namespace glide
    * Writes one `.vtu` per output step and a `.pvd` collection (P5.1):
    * displacement, strain, stress (2x2 or 3x3 tensors plus the out-of-plane
    * or hoop component in 2D), von Mises stress, and material id. Each file
-   * is written under a temporary name and renamed when complete, and the
-   * `.pvd` is rewritten the same way after each step, so an interrupted
-   * run leaves only complete, readable steps.
+   * is written under a temporary name, checked and renamed when complete
+   * (OutputDirectory); the `.pvd` is an index that commit_step() publishes
+   * after the data it lists, so an interrupted run leaves only complete,
+   * readable steps.
    */
   template <int dim>
   class VtuWriter
   {
   public:
     VtuWriter(const Elasticity<dim> &elasticity,
-              const std::string     &directory,
+              OutputDirectory       &output,
               const std::string     &name);
 
-    /// Write step @p step at load factor @p time.
+    /// Collective: write the VTU of step @p step at load factor @p time
+    /// under its final name (OutputError on every process if it fails).
     void
     write(const unsigned int step, const double time, const VectorType &U);
 
+    /// Process 0, inside OutputDirectory::commit_step(): write the `.pvd`
+    /// listing every VTU written so far.
+    void
+    write_pvd();
+
   private:
     const Elasticity<dim>                      &elasticity;
-    const std::string                           directory, name;
+    OutputDirectory                            &output;
+    const std::string                           name;
     std::vector<std::pair<double, std::string>> records;
   };
 } // namespace glide

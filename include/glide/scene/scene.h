@@ -103,5 +103,8 @@ namespace glide
     parse_parameters(dealii::ParameterHandler &prm);
     void
     check() const;
+    /// Refuse a mesh that cannot fit in memory, before it is built.
+    void
+    check_size() const;
   };
 } // namespace glide

@@ -1,0 +1,512 @@
+#include <glide/output/interruption.h>
+#include <glide/output/output_directory.h>
+#include <glide/output/output_error.h>
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
+
+#include <sys/statvfs.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+#include <vector>
+
+namespace glide
+{
+  namespace fs = std::filesystem;
+
+  const char *const OutputDirectory::manifest_name = ".glide-output";
+  const char *const OutputDirectory::staging_name  = ".glide-staging";
+
+  void
+  throw_output_error_on_any_process(const std::string &failure, MPI_Comm comm)
+  {
+    using namespace dealii::Utilities::MPI;
+    if (max(failure.empty() ? 0 : 1, comm) == 0)
+      return;
+    std::string message;
+    for (const auto &m : gather(comm, failure, 0))
+      if (message.empty() && !m.empty())
+        message = m;
+    throw OutputError(broadcast(comm, message, 0));
+  }
+
+  namespace
+  {
+    bool
+    ends_with(const std::string &s, const std::string &suffix)
+    {
+      return s.size() >= suffix.size() &&
+             s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+    }
+
+    /// What to tell the user about a failed write, from errno or an
+    /// error code.
+    std::string
+    advice(const int error)
+    {
+      std::string text = std::strerror(error);
+      if (error == ENOSPC || error == EDQUOT)
+        text += "; the disk is full: free space there or choose another "
+                "'Output/Directory'";
+      else if (error == EACCES || error == EPERM || error == EROFS)
+        text += "; choose an 'Output/Directory' you may write in";
+      return text;
+    }
+
+    /// A disk with no free block left: a write there may have been cut
+    /// short even if the writer (contact output) did not check.
+    bool
+    disk_full(const std::string &path)
+    {
+      struct statvfs s;
+      return statvfs(path.c_str(), &s) == 0 && s.f_blocks > 0 && s.f_bfree == 0;
+    }
+
+    std::string
+    kind_of(const std::string &file)
+    {
+      std::string f = file;
+      if (ends_with(f, ".tmp"))
+        f.resize(f.size() - 4);
+      const auto dot = f.rfind('.');
+      return dot == std::string::npos ? "" : f.substr(dot);
+    }
+
+    std::string
+    in_quotes(const fs::path &p)
+    {
+      return "'" + p.string() + "'";
+    }
+  } // namespace
+
+
+
+  OutputDirectory::OutputDirectory(const std::string &parent,
+                                   const std::string &name,
+                                   MPI_Comm           comm)
+    : directory(parent + "/" + name)
+    , staging_directory(parent + "/" + name + "/" + staging_name)
+    , comm(comm)
+    , root(dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+  {}
+
+
+
+  OutputDirectory::~OutputDirectory()
+  {
+    if (!root)
+      return;
+    std::error_code ec;
+    fs::remove_all(staging_directory, ec);
+    for (const auto &f : manifest)
+      fs::remove(fs::path(directory) / (f + ".tmp"), ec);
+  }
+
+
+
+  void
+  OutputDirectory::prepare()
+  {
+    std::string failure;
+    if (root)
+      try
+        {
+          const fs::path  dir(directory);
+          std::error_code ec;
+          if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+            throw OutputError("The output directory " + in_quotes(dir) +
+                              " exists and is not a directory; choose another "
+                              "'Output/Directory' or 'Scene name'.");
+          const bool created = fs::create_directories(dir, ec);
+          if (ec)
+            throw OutputError("Cannot create the output directory " +
+                              in_quotes(dir) + ": " + advice(ec.value()) +
+                              ". Check 'Output/Directory'.");
+
+          // What an earlier run wrote here.
+          std::vector<std::string> earlier;
+          const fs::path           manifest_path = dir / manifest_name;
+          if (fs::exists(manifest_path, ec))
+            {
+              std::ifstream in(manifest_path);
+              std::string   line;
+              while (std::getline(in, line))
+                // Plain names only: never follow a path out of here.
+                if (!line.empty() && line[0] != '#' &&
+                    line.find('/') == std::string::npos && line != "." &&
+                    line != "..")
+                  earlier.push_back(line);
+              earlier.push_back(staging_name);
+            }
+          else if (!created)
+            {
+              std::vector<std::string> entries;
+              for (const auto &e : fs::directory_iterator(dir, ec))
+                entries.push_back(e.path().filename().string());
+              if (ec)
+                throw OutputError("Cannot read the output directory " +
+                                  in_quotes(dir) + ": " + advice(ec.value()) +
+                                  ".");
+              if (!entries.empty())
+                throw OutputError(
+                  "The output directory " + in_quotes(dir) +
+                  " already holds files that glide did not write (e.g. '" +
+                  entries.front() + "'; glide lists what it writes in '" +
+                  manifest_name +
+                  "', and there is none), and glide never deletes or "
+                  "overwrites a file it did not write. Choose another "
+                  "'Scene name' or 'Output/Directory', or move those files "
+                  "away (results of a glide older than this one: remove "
+                  "the directory).");
+            }
+          for (const auto &f : earlier)
+            for (const std::string suffix : {"", ".tmp"})
+              {
+                const fs::path p = dir / (f + suffix);
+                if (f == staging_name && suffix.empty())
+                  fs::remove_all(p, ec);
+                else
+                  fs::remove(p, ec);
+                if (ec)
+                  throw OutputError("Cannot remove the earlier result " +
+                                    in_quotes(p) + ": " + advice(ec.value()) +
+                                    ".");
+              }
+          manifest = {staging_name};
+          write_manifest();
+          fs::create_directory(staging_directory, ec);
+          if (ec)
+            throw OutputError("Cannot create " + in_quotes(staging_directory) +
+                              ": " + advice(ec.value()) + ".");
+        }
+      catch (const OutputError &e)
+        {
+          failure = e.what();
+        }
+      catch (const std::exception &e)
+        {
+          failure = "Cannot prepare the output directory '" + directory +
+                    "': " + e.what();
+        }
+    throw_output_error_on_any_process(failure, comm);
+  }
+
+
+
+  void
+  OutputDirectory::write_manifest()
+  {
+    const fs::path dir(directory);
+    const fs::path tmp = dir / (std::string(manifest_name) + ".tmp");
+    {
+      std::ofstream out(tmp);
+      out << "# glide's output directory. glide wrote the files listed "
+             "below and replaces them\n# at its next run here; it never "
+             "touches other files.\n";
+      for (const auto &f : manifest)
+        out << f << '\n';
+      out.close();
+      if (out.fail())
+        {
+          const int       error = errno;
+          std::error_code ec;
+          fs::remove(tmp, ec);
+          throw OutputError("Cannot write in the output directory " +
+                            in_quotes(dir) + " (the file " + in_quotes(tmp) +
+                            "): " + advice(error) + ".");
+        }
+    }
+    std::error_code ec;
+    fs::rename(tmp, dir / manifest_name, ec);
+    if (ec)
+      throw OutputError("Cannot write " + in_quotes(dir / manifest_name) +
+                        ": " + advice(ec.value()) + ".");
+  }
+
+
+
+  void
+  OutputDirectory::claim(const std::string &file)
+  {
+    if (manifest.count(file) > 0)
+      return;
+    const fs::path dir(directory);
+    for (const std::string suffix : {"", ".tmp"})
+      {
+        std::error_code ec;
+        if (fs::exists(fs::symlink_status(dir / (file + suffix), ec)))
+          throw OutputError(
+            "The output directory " + in_quotes(dir) + " holds " +
+            in_quotes(file + suffix) +
+            ", which glide did not write; glide never overwrites a file it "
+            "did not write. Move it away, or choose another 'Scene name' or "
+            "'Output/Directory'.");
+      }
+    manifest.insert(file);
+    write_manifest();
+  }
+
+
+
+  bool
+  OutputDirectory::is_complete(const std::string &path,
+                               const std::string &kind,
+                               std::string       &message)
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+      {
+        message = "cannot be read back";
+        return false;
+      }
+    std::ostringstream s;
+    s << in.rdbuf();
+    const std::string text = s.str();
+    if (text.empty())
+      {
+        message = "is empty";
+        return false;
+      }
+    if (kind == ".vtu" || kind == ".pvd")
+      {
+        const auto end = text.find_last_not_of(" \n\r\t");
+        if (end == std::string::npos || end < 9 ||
+            text.compare(end - 9, 10, "</VTKFile>") != 0)
+          {
+            message = "does not end with </VTKFile> (cut short)";
+            return false;
+          }
+      }
+    if (kind == ".csv")
+      {
+        if (text.back() != '\n')
+          {
+            message = "does not end with a complete line (cut short)";
+            return false;
+          }
+        std::istringstream lines(text);
+        std::string        line;
+        std::getline(lines, line);
+        const auto columns = std::count(line.begin(), line.end(), ',');
+        while (std::getline(lines, line))
+          if (std::count(line.begin(), line.end(), ',') != columns)
+            {
+              message = "has a line with a different number of columns "
+                        "than its header (cut short)";
+              return false;
+            }
+      }
+    return true;
+  }
+
+
+
+  void
+  OutputDirectory::write_tmp(const std::string                         &file,
+                             const std::function<void(std::ostream &)> &writer)
+  {
+    claim(file);
+    const fs::path target = fs::path(directory) / file;
+    const fs::path tmp    = fs::path(directory) / (file + ".tmp");
+    int            error  = 0;
+    {
+      std::ofstream out(tmp, std::ios::binary);
+      if (!out)
+        error = errno ? errno : EIO;
+      else
+        {
+          try
+            {
+              writer(out);
+            }
+          catch (const dealii::ExceptionBase &)
+            {
+              // deal.II's writers throw ExcIO when the stream fails.
+              out.setstate(std::ios::badbit);
+            }
+          out.close();
+          if (out.fail())
+            error = errno ? errno : EIO;
+        }
+    }
+    std::error_code ec;
+    if (error != 0)
+      {
+        fs::remove(tmp, ec);
+        throw OutputError("Cannot write " + in_quotes(target) + ": " +
+                          advice(error) + ".");
+      }
+    std::string message;
+    if (!is_complete(tmp.string(), kind_of(file), message))
+      {
+        fs::remove(tmp, ec);
+        throw OutputError("Writing " + in_quotes(target) + " failed: it " +
+                          message + "." +
+                          (disk_full(directory) ?
+                             " The disk is full: free space there or choose "
+                             "another 'Output/Directory'." :
+                             std::string("")));
+      }
+  }
+
+
+
+  void
+  OutputDirectory::rename_into_place(const std::string &from,
+                                     const std::string &file)
+  {
+    std::error_code ec;
+    fs::rename(from, fs::path(directory) / file, ec);
+    if (ec)
+      {
+        std::error_code ignored;
+        fs::remove(from, ignored);
+        throw OutputError("Cannot rename '" + from + "' to " +
+                          in_quotes(fs::path(directory) / file) + ": " +
+                          advice(ec.value()) + ".");
+      }
+  }
+
+
+
+  void
+  OutputDirectory::write_file(const std::string                         &file,
+                              const std::function<void(std::ostream &)> &writer)
+  {
+    write_tmp(file, writer);
+    rename_into_place(directory + "/" + file + ".tmp", file);
+  }
+
+
+
+  void
+  OutputDirectory::publish(const std::string &file)
+  {
+    const fs::path tmp = fs::path(directory) / (file + ".tmp");
+    std::string    message;
+    if (!is_complete(tmp.string(), kind_of(file), message))
+      {
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw OutputError("Writing " + in_quotes(fs::path(directory) / file) +
+                          " failed: it " + message + "." +
+                          (disk_full(directory) ?
+                             " The disk is full: free space there or choose "
+                             "another 'Output/Directory'." :
+                             std::string("")));
+      }
+    rename_into_place(tmp.string(), file);
+  }
+
+
+
+  void
+  OutputDirectory::write_index(
+    const std::string                         &file,
+    const std::function<void(std::ostream &)> &writer)
+  {
+    write_tmp(file, writer);
+    pending_indexes.push_back(file);
+  }
+
+
+
+  void
+  OutputDirectory::commit_step(const std::function<void()> &write_indexes)
+  {
+    std::string failure;
+    if (root)
+      try
+        {
+          std::vector<std::string> data, indexes;
+          std::error_code          ec;
+          for (const auto &e : fs::directory_iterator(staging_directory, ec))
+            {
+              const std::string f = e.path().filename().string();
+              if (ends_with(f, ".tmp"))
+                throw OutputError(
+                  "Writing " + in_quotes(fs::path(directory) / f) +
+                  " failed (its temporary file was left behind)" +
+                  (disk_full(directory) ? "; the disk is full: free space "
+                                          "there or choose another "
+                                          "'Output/Directory'." :
+                                          "."));
+              (ends_with(f, ".pvd") ? indexes : data).push_back(f);
+            }
+          if (ec)
+            throw OutputError("Cannot read " + in_quotes(staging_directory) +
+                              ": " + advice(ec.value()) + ".");
+          std::string message;
+          for (const auto &f : data)
+            if (!is_complete(staging_directory + "/" + f, kind_of(f), message))
+              throw OutputError(
+                "Writing " + in_quotes(fs::path(directory) / f) +
+                " failed: it " + message + ". " +
+                (disk_full(directory) ? "The disk is full: free space there or "
+                                        "choose another 'Output/Directory'." :
+                                        std::string("")));
+          for (const auto &f : indexes)
+            if (!is_complete(staging_directory + "/" + f, kind_of(f), message))
+              throw OutputError("Writing " +
+                                in_quotes(fs::path(directory) / f) +
+                                " failed: it " + message + ".");
+          // The writers of staged files do not check their streams: a
+          // disk that is full now may have cut one of them short.
+          if (disk_full(directory))
+            throw OutputError("The disk of the output directory '" + directory +
+                              "' is full: free space there or choose "
+                              "another 'Output/Directory'.");
+          for (const auto &f : data)
+            claim(f);
+          for (const auto &f : indexes)
+            claim(f);
+          for (const auto &f : data)
+            {
+              fs::rename(fs::path(staging_directory) / f,
+                         fs::path(directory) / f,
+                         ec);
+              if (ec)
+                throw OutputError("Cannot move " + f + " into " +
+                                  in_quotes(directory) + ": " +
+                                  advice(ec.value()) + ".");
+            }
+          // The indexes: first all written and checked under their
+          // temporary names, then renamed one right after the other.
+          pending_indexes.clear();
+          write_indexes();
+          SignalBlocker blocker;
+          for (const auto &f : pending_indexes)
+            rename_into_place(directory + "/" + f + ".tmp", f);
+          pending_indexes.clear();
+          for (const auto &f : indexes)
+            rename_into_place(staging_directory + "/" + f, f);
+        }
+      catch (const OutputError &e)
+        {
+          failure = e.what();
+        }
+      catch (const std::exception &e)
+        {
+          failure =
+            std::string("Cannot write the results of this step: ") + e.what();
+        }
+    if (!failure.empty())
+      {
+        // Nothing of this step is published: its staged and temporary
+        // files go.
+        std::error_code ec;
+        for (const auto &f : pending_indexes)
+          fs::remove(fs::path(directory) / (f + ".tmp"), ec);
+        pending_indexes.clear();
+        for (const auto &e : fs::directory_iterator(staging_directory, ec))
+          fs::remove(e.path(), ec);
+      }
+    throw_output_error_on_any_process(failure, comm);
+  }
+} // namespace glide
