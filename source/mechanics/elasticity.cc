@@ -115,10 +115,12 @@ namespace glide
     std::vector<std::vector<double>> points;
     double                           tol = 0;
     std::set<types::boundary_id>     ids;
+    unsigned int                     body = numbers::invalid_unsigned_int;
     if (scene_node_sets.count(surface))
       {
         points = scene_node_sets.at(surface)->points;
         tol    = scene_node_sets.at(surface)->tolerance;
+        body   = scene_node_sets.at(surface)->body;
       }
     else
       for (const auto &name : Utilities::split_string_list(surface, ','))
@@ -130,7 +132,9 @@ namespace glide
     std::set<types::global_dof_index> seen;
     std::vector<unsigned int>         found(points.size(), 0);
     for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned() || (!owned_only && cell->is_ghost()))
+      if ((cell->is_locally_owned() || (!owned_only && cell->is_ghost())) &&
+          (body == numbers::invalid_unsigned_int ||
+           cell->material_id() == body))
         for (const auto v : cell->vertex_indices())
           {
             const Point<dim> x   = cell->vertex(v);

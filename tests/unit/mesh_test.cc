@@ -23,7 +23,7 @@ namespace
   double
   measure_after(const std::string                         &type,
                 const unsigned int                         refinements,
-                std::map<types::boundary_id, std::string> &names)
+                std::map<types::boundary_id, std::vector<std::string>> &names)
   {
     MeshParameters m;
     m.type         = type;
@@ -40,11 +40,11 @@ namespace
   }
 
   std::set<std::string>
-  values(const std::map<types::boundary_id, std::string> &m)
+  values(const std::map<types::boundary_id, std::vector<std::string>> &m)
   {
     std::set<std::string> s;
     for (const auto &[k, v] : m)
-      s.insert(v);
+      s.insert(v.begin(), v.end());
     return s;
   }
 } // namespace
@@ -52,7 +52,7 @@ namespace
 TEST(Mesh, RoundShapesFollowTheirManifolds)
 {
   const double                              pi = numbers::PI;
-  std::map<types::boundary_id, std::string> names;
+  std::map<types::boundary_id, std::vector<std::string>> names;
   EXPECT_NEAR(measure_after<2>("cylinder", 5, names), pi * 4., 2e-3);
   EXPECT_EQ(values(names), (std::set<std::string>{"outer"}));
   EXPECT_NEAR(measure_after<2>("half cylinder", 5, names), pi * 2., 2e-3);
@@ -76,7 +76,7 @@ TEST(Mesh, HalfCylinderIsTheLowerHalf)
   m.center = {0., 1.};
   m.radius = 1.;
   Triangulation<2>                          tria;
-  std::map<types::boundary_id, std::string> names;
+  std::map<types::boundary_id, std::vector<std::string>> names;
   build_body_mesh<2>(m, "b", tria, names);
   tria.refine_global(2); // the lowest point is a vertex from one refinement on
   for (const auto &v : tria.get_vertices())
@@ -141,7 +141,7 @@ TEST(Mesh, GmshPhysicalNamesBecomeSurfaces)
   m.type = "file";
   m.file = std::string(GLIDE_TEST_DATA) + "/two_quads.msh";
   Triangulation<2>                          tria;
-  std::map<types::boundary_id, std::string> names;
+  std::map<types::boundary_id, std::vector<std::string>> names;
   build_body_mesh<2>(m, "slab", tria, names);
   EXPECT_EQ(tria.n_active_cells(), 2u);
   EXPECT_EQ(values(names).count("bottom"), 1u);
@@ -155,7 +155,7 @@ TEST(Mesh, UnreadableMeshFileIsAnInputError)
   m.file =
     glide_test::write_file("broken.msh", "$MeshFormat\nthis is not gmsh\n");
   Triangulation<2>                          tria;
-  std::map<types::boundary_id, std::string> names;
+  std::map<types::boundary_id, std::vector<std::string>> names;
   EXPECT_THROW(build_body_mesh<2>(m, "slab", tria, names), InputError);
 }
 
@@ -167,7 +167,7 @@ TEST(Mesh, AbaqusSurfacesBecomeNumberedSurfaces)
   m.type = "file";
   m.file = std::string(GLIDE_TEST_DATA) + "/two_quads.inp";
   Triangulation<2>                          tria;
-  std::map<types::boundary_id, std::string> names;
+  std::map<types::boundary_id, std::vector<std::string>> names;
   build_body_mesh<2>(m, "part", tria, names);
   EXPECT_EQ(tria.n_active_cells(), 2u);
   EXPECT_EQ(values(names).count("2"), 1u);
@@ -188,7 +188,7 @@ TEST(Mesh, HertzBodiesAreTheLowerPartOfASphere)
   // 3D: the sphere octant below the center (volume pi R^3/6), with the flat
   // top a quarter disk (area pi R^2/4), and the lowest point exactly at
   // center - R e_y.
-  std::map<types::boundary_id, std::string> names;
+  std::map<types::boundary_id, std::vector<std::string>> names;
   for (const unsigned int dim : {2u, 3u})
     {
       MeshParameters m;
@@ -219,7 +219,7 @@ TEST(Mesh, HertzBodiesAreTheLowerPartOfASphere)
           for (const auto &cell : tria.active_cell_iterators())
             for (const auto f : cell->face_indices())
               if (cell->face(f)->at_boundary() &&
-                  names[cell->face(f)->boundary_id()] == "flat")
+                  names[cell->face(f)->boundary_id()][0] == "flat")
                 {
                   flat += cell->face(f)->measure();
                   EXPECT_NEAR(cell->face(f)->center()[1], 1., 1e-12)
