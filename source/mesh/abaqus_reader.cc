@@ -27,6 +27,15 @@ namespace glide
       return file_line(l.file, l.number);
     }
 
+    /// "line 12", or the file and line if @p l is in another (included)
+    /// file than @p here.
+    std::string
+    earlier(const Line &l, const Line &here)
+    {
+      return l.file == here.file ? "line " + std::to_string(l.number) :
+                                   where(l);
+    }
+
     std::string
     upper(std::string s)
     {
@@ -307,6 +316,8 @@ namespace glide
       std::string                                name;
       std::map<std::string, std::set<long>>      ids;
       Line                                       line;
+      /// Abaqus/CAE's helper sets (INTERNAL) are no node sets of the scene.
+      bool internal = false;
     };
 
     struct RawSurface
@@ -631,6 +642,11 @@ namespace glide
                   if (skip(d))
                     continue;
                   const auto items = split(d.text);
+                  require(is_integer(items[0]),
+                          where(d) + ": '" + trim(d.text) +
+                            "' is not a node line (id, x, y" +
+                            (dim == 3 ? ", z" : "") +
+                            "); a keyword line starts with '*'.");
                   require(items.size() >= 1 + dim && items.size() <= 4,
                           where(d) + ": a node line needs its id and " +
                             std::to_string(dim) +
@@ -645,8 +661,9 @@ namespace glide
                   require(prev == s.node_lines.end(),
                           where(d) + ": node " + std::to_string(id) +
                             " is defined a second time (first at " +
-                            where(prev == s.node_lines.end() ? d :
-                                                               prev->second) +
+                            earlier(prev == s.node_lines.end() ? d :
+                                                                 prev->second,
+                                    d) +
                             "); every node id must be defined once.");
                   s.nodes[id]      = node;
                   s.node_lines[id] = d;
@@ -704,8 +721,10 @@ namespace glide
                   require(prev == s.elements.end(),
                           where(d) + ": element " + std::to_string(id) +
                             " is defined a second time (first at " +
-                            where(prev == s.elements.end() ? d :
-                                                             prev->second.line) +
+                            earlier(prev == s.elements.end() ?
+                                      d :
+                                      prev->second.line,
+                                    d) +
                             "); every element id must be defined once.");
                   s.elements[id] = e;
                   if (elset)
@@ -734,6 +753,7 @@ namespace glide
               RawSet set = known[upper(set_name)];
               if (set.name.empty())
                 set.name = set_name, set.line = l;
+              set.internal = k.has("INTERNAL");
               for (std::size_t j = i + 1; j < end; ++j)
                 {
                   const Line &d = lines[j];
@@ -1001,7 +1021,7 @@ namespace glide
         std::map<std::string, std::string> spelled; // upper -> first name
         auto add = [&](const RawSet &s, const std::string &inst) {
           const auto it = s.ids.find(inst);
-          if (it == s.ids.end())
+          if (it == s.ids.end() || (s.internal && &out == &c.node_sets))
             return;
           const std::string u = upper(s.name);
           if (!spelled.count(u))
@@ -1022,8 +1042,14 @@ namespace glide
       std::set<std::string> nset_names;
       for (const auto &[n, ids] : c.node_sets)
         nset_names.insert(upper(n));
+      std::set<std::string> internal;
+      for (const auto *sets : {&own.elsets,
+                               assembly ? &assembly->elsets : &own.elsets})
+        for (const auto &[u, set] : *sets)
+          if (set.internal)
+            internal.insert(u);
       for (const auto &[n, ids] : c.cell_sets)
-        if (!nset_names.count(upper(n)))
+        if (!nset_names.count(upper(n)) && !internal.count(upper(n)))
           {
             auto &nodes = c.node_sets[n];
             for (const auto id : ids)

@@ -145,7 +145,9 @@ namespace glide
 
       /// The next non-empty line; its index in @p index.
       std::istringstream
-      line(std::size_t &index, const std::string &section)
+      line(std::size_t       &index,
+           const std::string &section,
+           const bool         end_of_section = false)
       {
         while (next < lines.size() &&
                lines[next].find_first_not_of(" \t") == std::string::npos)
@@ -154,6 +156,11 @@ namespace glide
                 "Gmsh file '" + file + "' ends inside the " + section +
                   " section; the file is cut off or not a Gmsh file.");
         index = next++;
+        require(end_of_section || lines[index].rfind('$', 0) != 0,
+                where(index) + ": the $" + section +
+                  " section ends here, but its counts announce more "
+                  "entries; the counts or the entries are wrong, or the "
+                  "file is cut off.");
         return std::istringstream(lines[index]);
       }
 
@@ -174,7 +181,7 @@ namespace glide
       expect_end(const std::string &section)
       {
         std::size_t index;
-        auto        in = line(index, section);
+        auto        in = line(index, section, true);
         std::string word;
         in >> word;
         require(word == "$End" + section,
@@ -187,6 +194,32 @@ namespace glide
       {
         const auto it = physical_names.find({group_dim, tag});
         return it == physical_names.end() ? std::to_string(tag) : it->second;
+      }
+
+      /// The rest of an element line: its node ids.
+      std::vector<long>
+      node_list(std::istringstream &in, const std::size_t index)
+      {
+        std::vector<long> nodes;
+        std::string       token;
+        while (in >> token)
+          {
+            std::size_t used = 0;
+            long        id   = 0;
+            try
+              {
+                id = std::stol(token, &used);
+              }
+            catch (...)
+              {
+                used = 0;
+              }
+            require(used == token.size() && id > 0,
+                    where(index) + ": cannot read '" + token +
+                      "' as a node id in '" + lines[index] + "'.");
+            nodes.push_back(id);
+          }
+        return nodes;
       }
 
       void
@@ -202,6 +235,7 @@ namespace glide
                   const std::size_t        index);
 
       std::map<long, std::size_t> element_lines;
+      std::string                 face_problem;
     };
 
 
@@ -289,9 +323,18 @@ namespace glide
         }
       if (physicals.empty())
         return; // a face, edge or point in no group: it names nothing
-      require(supported,
-              where(index) + ": " + label + " is in the physical group '" +
-                group_name(t.dim, physicals[0]) + "': " + advice(t, dim));
+      if (!supported)
+        {
+          // Reported after all elements are read, unless a cell of an
+          // unsupported type explains it better (the triangles on the
+          // boundary of tetrahedra).
+          if (face_problem.empty())
+            face_problem = where(index) + ": " + label +
+                           " is in the physical group '" +
+                           group_name(t.dim, physicals[0]) +
+                           "': " + advice(t, dim);
+          return;
+        }
       require(nodes.size() == expected_nodes(type),
               where(index) + ": " + label + " has " +
                 std::to_string(nodes.size()) + " nodes instead of " +
@@ -345,7 +388,7 @@ namespace glide
                                  "files: save with 'Mesh.Binary = 0'.");
               require((version >= 2 && version < 3) ||
                         std::abs(version - 4.1) < 1e-6,
-                      where(i) + ": Gmsh format " + std::to_string(version) +
+                      where(i) + ": Gmsh format " + lines[i] +
                         "; glide reads the ASCII formats 2.2 and 4.1 "
                         "(Mesh.MshFileVersion = 2.2 or 4.1).");
               expect_end(name);
@@ -471,11 +514,8 @@ namespace glide
                           if (t == 0 && tag != 0)
                             physicals.push_back(tag);
                         }
-                      std::vector<long> element_nodes;
-                      long              node;
-                      while (l >> node)
-                        element_nodes.push_back(node);
-                      add_element(id, type, physicals, element_nodes, i);
+                      add_element(
+                        id, type, physicals, node_list(l, i), i);
                     }
                 }
               else
@@ -497,11 +537,8 @@ namespace glide
                         {
                           auto       e  = line(i, name);
                           const long id = number<long>(e, i, "an element id");
-                          std::vector<long> element_nodes;
-                          long              node;
-                          while (e >> node)
-                            element_nodes.push_back(node);
-                          add_element(id, type, physicals, element_nodes, i);
+                          add_element(
+                            id, type, physicals, node_list(e, i), i);
                         }
                     }
                 }
@@ -525,6 +562,13 @@ namespace glide
       require(nodes && elements,
               "Gmsh file '" + file + "' has no " +
                 (nodes ? "$Elements" : "$Nodes") + " section.");
+      if (!face_problem.empty())
+        {
+          for (const auto &c : content.cells)
+            if (!c.problem.empty())
+              throw InputError(c.problem);
+          throw InputError(face_problem);
+        }
       return content;
     }
   } // namespace
