@@ -180,9 +180,9 @@ namespace glide
         for (unsigned int d = 0; d < points[i].size(); ++d)
           p << (d == 0 ? "" : ", ") << points[i][d];
         std::ostringstream why;
-        why << "Node set '" << surface << "': no mesh vertex within "
-            << tol << " of its point " << i + 1 << " of " << points.size()
-            << " (" << p.str() << "); the nearest vertex"
+        why << "Node set '" << surface << "': no mesh vertex within " << tol
+            << " of its point " << i + 1 << " of " << points.size() << " ("
+            << p.str() << "); the nearest vertex"
             << (body == numbers::invalid_unsigned_int ?
                   std::string() :
                   " of body '" + scene.bodies[body].name + "'")

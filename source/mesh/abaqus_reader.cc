@@ -106,8 +106,9 @@ namespace glide
                 name =
                   (std::filesystem::path(file).parent_path() / name).string();
               require(std::filesystem::exists(name),
-                      file_line(file, number) + ": cannot open the included "
-                                                "file '" +
+                      file_line(file, number) +
+                        ": cannot open the included "
+                        "file '" +
                         name + "'.");
               load(name, lines, depth + 1);
               continue;
@@ -242,16 +243,18 @@ namespace glide
                     ". Mesh the body with hexahedra (Abaqus/CAE: Mesh "
                     "Controls, Element Shape = Hex).";
       else if (std::regex_match(type, m, wedge))
-        t.refusal = "a wedge or pyramid; " + what + ". Mesh the body with "
-                                                    "hexahedra only.";
+        t.refusal = "a wedge or pyramid; " + what +
+                    ". Mesh the body with "
+                    "hexahedra only.";
       else
         t.refusal = "not a continuum element glide knows; " + what +
                     " (rigid surfaces are declared in the scene: "
                     "'Master = rigid plane', or a body with 'Rigid = true').";
       if (t.refusal.empty() && t.dim != dim)
-        t.refusal = "a " + std::to_string(t.dim) +
-                    "D element, but the scene has 'Dimension = " +
-                    std::to_string(dim) + "'; " + what + ".";
+        t.refusal =
+          "a " + std::to_string(t.dim) +
+          "D element, but the scene has 'Dimension = " + std::to_string(dim) +
+          "'; " + what + ".";
       return t;
     }
 
@@ -313,9 +316,9 @@ namespace glide
     /// A set: ids per instance ("" = the scope's own nodes or elements).
     struct RawSet
     {
-      std::string                                name;
-      std::map<std::string, std::set<long>>      ids;
-      Line                                       line;
+      std::string                           name;
+      std::map<std::string, std::set<long>> ids;
+      Line                                  line;
       /// Abaqus/CAE's helper sets (INTERNAL) are no node sets of the scene.
       bool internal = false;
     };
@@ -369,14 +372,14 @@ namespace glide
       content(const std::string &part) const;
 
     private:
-      const std::string             file;
-      const unsigned int            dim;
-      std::vector<Line>             lines;
-      std::map<std::string, Scope>  scopes;         // "" and parts
+      const std::string                  file;
+      const unsigned int                 dim;
+      std::vector<Line>                  lines;
+      std::map<std::string, Scope>       scopes;     // "" and parts
       std::map<std::string, std::string> part_names; // upper -> as written
-      std::vector<Instance>         instances;
-      std::string                   scope;          // current
-      bool                          in_assembly = false;
+      std::vector<Instance>              instances;
+      std::string                        scope; // current
+      bool                               in_assembly = false;
 
       /// Data lines of the keyword at line @p k: lines k+1 ... until the
       /// next keyword; returns the index of that keyword.
@@ -449,9 +452,8 @@ namespace glide
                 set.ids[I].insert(to_id(rest, l, "a " + what + " id"));
                 return;
               }
-            const auto &part_sets = nodes ?
-                                      scopes.at(inst->part).nsets :
-                                      scopes.at(inst->part).elsets;
+            const auto &part_sets = nodes ? scopes.at(inst->part).nsets :
+                                            scopes.at(inst->part).elsets;
             const auto  it        = part_sets.find(upper(unquote(rest)));
             require(it != part_sets.end(),
                     where(l) + ": the " + what + " set '" + rest +
@@ -478,8 +480,7 @@ namespace glide
     {
       const Line       &head = lines[i];
       const std::string name = k.get("NAME");
-      require(!name.empty(),
-              where(head) + ": *SURFACE needs NAME=<name>.");
+      require(!name.empty(), where(head) + ": *SURFACE needs NAME=<name>.");
       const std::string type = upper(k.get("TYPE"));
       require(type.empty() || type == "ELEMENT" || type == "NODE",
               where(head) + ": *SURFACE, TYPE=" + k.get("TYPE") +
@@ -491,7 +492,7 @@ namespace glide
       RawSurface &surface = s.surfaces[upper(name)];
       if (surface.name.empty())
         surface.name = name;
-      surface.node_based = (type == "NODE");
+      surface.node_based    = (type == "NODE");
       const std::size_t end = data_end(i);
       for (++i; i < end; ++i)
         {
@@ -514,13 +515,11 @@ namespace glide
           int face = -1;
           if (items.size() > 1 && !items[1].empty())
             {
-              const std::string f = upper(items[1]);
+              const std::string  f       = upper(items[1]);
               const unsigned int n_faces = 2 * dim;
-              require(f.size() >= 2 && f[0] == 'S' &&
-                        is_integer(f.substr(1)) &&
+              require(f.size() >= 2 && f[0] == 'S' && is_integer(f.substr(1)) &&
                         std::stoi(f.substr(1)) >= 1 &&
-                        std::stoi(f.substr(1)) <=
-                          static_cast<int>(n_faces),
+                        std::stoi(f.substr(1)) <= static_cast<int>(n_faces),
                       where(l) + ": face identifier '" + items[1] +
                         "' of surface '" + name +
                         "': glide reads the faces S1 to S" +
@@ -590,7 +589,7 @@ namespace glide
               for (std::size_t j = i + 1; j < end; ++j)
                 if (!skip(lines[j]))
                   {
-                    const auto items = split(lines[j].text);
+                    const auto          items = split(lines[j].text);
                     std::vector<double> v;
                     for (const auto &x : items)
                       v.push_back(to_double(x, lines[j], "a coordinate"));
@@ -631,9 +630,10 @@ namespace glide
                       where(l) + ": *NODE, INPUT=... is not read by glide; "
                                  "put the nodes into the file or use "
                                  "*INCLUDE.");
-              Scope &s = scopes[scope];
-              RawSet *nset =
-                k.get("NSET").empty() ? nullptr : &s.nsets[upper(k.get("NSET"))];
+              Scope  &s    = scopes[scope];
+              RawSet *nset = k.get("NSET").empty() ?
+                               nullptr :
+                               &s.nsets[upper(k.get("NSET"))];
               if (nset && nset->name.empty())
                 nset->name = k.get("NSET"), nset->line = l;
               for (std::size_t j = i + 1; j < end; ++j)
@@ -649,14 +649,13 @@ namespace glide
                             "); a keyword line starts with '*'.");
                   require(items.size() >= 1 + dim && items.size() <= 4,
                           where(d) + ": a node line needs its id and " +
-                            std::to_string(dim) +
-                            " coordinates (id, x, y" +
+                            std::to_string(dim) + " coordinates (id, x, y" +
                             (dim == 3 ? ", z" : "") + ").");
-                  const long id = to_id(items[0], d, "a node id");
+                  const long            id = to_id(items[0], d, "a node id");
                   MeshFileContent::Node node;
                   for (unsigned int c = 1; c < items.size(); ++c)
                     node.x[c - 1] = to_double(items[c], d, "a coordinate");
-                  node.line = d.number;
+                  node.line       = d.number;
                   const auto prev = s.node_lines.find(id);
                   require(prev == s.node_lines.end(),
                           where(d) + ": node " + std::to_string(id) +
@@ -676,11 +675,11 @@ namespace glide
               const std::string type = upper(k.get("TYPE"));
               require(!type.empty(),
                       where(l) + ": *ELEMENT needs TYPE=<element type>.");
-              const ElementType et = classify(type, dim);
-              Scope            &s  = scopes[scope];
-              RawSet           *elset =
-                k.get("ELSET").empty() ? nullptr :
-                                                   &s.elsets[upper(k.get("ELSET"))];
+              const ElementType et    = classify(type, dim);
+              Scope            &s     = scopes[scope];
+              RawSet           *elset = k.get("ELSET").empty() ?
+                                          nullptr :
+                                          &s.elsets[upper(k.get("ELSET"))];
               if (elset && elset->name.empty())
                 elset->name = k.get("ELSET"), elset->line = l;
               for (std::size_t j = i + 1; j < end; ++j)
@@ -733,12 +732,10 @@ namespace glide
             }
           else if (name == "NSET" || name == "ELSET")
             {
-              const bool        nodes = (name == "NSET");
-              const std::string set_name =
-                k.get(nodes ? "NSET" : "ELSET");
+              const bool        nodes    = (name == "NSET");
+              const std::string set_name = k.get(nodes ? "NSET" : "ELSET");
               require(!set_name.empty(),
-                      where(l) + ": *" + name + " needs " + name +
-                        "=<name>.");
+                      where(l) + ": *" + name + " needs " + name + "=<name>.");
               Scope      &s     = scopes[scope];
               auto       &known = nodes ? s.nsets : s.elsets;
               std::string instance;
@@ -785,20 +782,19 @@ namespace glide
                 {
                   // *NSET, ELSET=e: the nodes of the elements of e.
                   RawSet elements;
-                  add_to_set(elements, k.get("ELSET"), instance, s.elsets,
-                             false, l);
+                  add_to_set(
+                    elements, k.get("ELSET"), instance, s.elsets, false, l);
                   for (const auto &[inst, ids] : elements.ids)
                     {
                       const Scope &owner =
-                        inst.empty() ? s :
-                                       scopes.at(find_instance(inst)->part);
+                        inst.empty() ? s : scopes.at(find_instance(inst)->part);
                       for (const auto id : ids)
                         {
                           const auto e = owner.elements.find(id);
                           require(e != owner.elements.end(),
-                                  where(l) + ": element " +
-                                    std::to_string(id) + " of *ELSET '" +
-                                    k.get("ELSET") + "' is not defined.");
+                                  where(l) + ": element " + std::to_string(id) +
+                                    " of *ELSET '" + k.get("ELSET") +
+                                    "' is not defined.");
                           for (const auto n : e->second.nodes)
                             if (n > 0)
                               set.ids[inst].insert(n);
@@ -806,7 +802,7 @@ namespace glide
                     }
                 }
               known[upper(set_name)] = set;
-              i = end - 1;
+              i                      = end - 1;
               continue;
             }
           else if (name == "SURFACE")
@@ -837,20 +833,18 @@ namespace glide
     std::array<double, 3>
     rotate(const std::array<double, 3> &x, const std::vector<double> &r)
     {
-      std::array<double, 3> a{{r[0], r[1], r[2]}}, k{{r[3] - r[0],
-                                                      r[4] - r[1],
-                                                      r[5] - r[2]}};
-      const double          norm =
-        std::sqrt(k[0] * k[0] + k[1] * k[1] + k[2] * k[2]);
+      std::array<double, 3> a{{r[0], r[1], r[2]}},
+        k{{r[3] - r[0], r[4] - r[1], r[5] - r[2]}};
+      const double norm = std::sqrt(k[0] * k[0] + k[1] * k[1] + k[2] * k[2]);
       for (auto &c : k)
         c /= norm;
-      const double          angle = r[6] * M_PI / 180.;
-      std::array<double, 3> v{{x[0] - a[0], x[1] - a[1], x[2] - a[2]}};
+      const double                angle = r[6] * M_PI / 180.;
+      std::array<double, 3>       v{{x[0] - a[0], x[1] - a[1], x[2] - a[2]}};
       const std::array<double, 3> kxv{{k[1] * v[2] - k[2] * v[1],
                                        k[2] * v[0] - k[0] * v[2],
                                        k[0] * v[1] - k[1] * v[0]}};
-      const double kv = k[0] * v[0] + k[1] * v[1] + k[2] * v[2];
-      std::array<double, 3> out;
+      const double                kv = k[0] * v[0] + k[1] * v[1] + k[2] * v[2];
+      std::array<double, 3>       out;
       for (unsigned int d = 0; d < 3; ++d)
         out[d] = a[d] + v[d] * std::cos(angle) + kxv[d] * std::sin(angle) +
                  k[d] * kv * (1. - std::cos(angle));
@@ -870,9 +864,12 @@ namespace glide
       const Instance *instance = nullptr;
       if (part_names.empty())
         require(part.empty(),
-                "Abaqus file '" + file + "' has no *PART, but the scene asks "
-                "for 'Part = " + part + "'; leave 'Part' empty (use 'Element "
-                "set' to pick a body out of a file without parts).");
+                "Abaqus file '" + file +
+                  "' has no *PART, but the scene asks "
+                  "for 'Part = " +
+                  part +
+                  "'; leave 'Part' empty (use 'Element "
+                  "set' to pick a body out of a file without parts).");
       else
         {
           std::string list;
@@ -916,15 +913,13 @@ namespace glide
           if (instance)
             part_scope = instance->part;
         }
-      const std::string I   = instance ? upper(instance->name) : "";
-      const Scope       own = scopes.count(part_scope) ?
-                                scopes.at(part_scope) :
-                                Scope();
+      const std::string I = instance ? upper(instance->name) : "";
+      const Scope       own =
+        scopes.count(part_scope) ? scopes.at(part_scope) : Scope();
       // Assembly-level sets and surfaces of this instance (files with parts).
       const Scope *assembly =
-        (!part_names.empty() && instance && scopes.count("")) ?
-          &scopes.at("") :
-          nullptr;
+        (!part_names.empty() && instance && scopes.count("")) ? &scopes.at("") :
+                                                                nullptr;
 
       for (const auto &[id, node] : own.nodes)
         {
@@ -942,10 +937,10 @@ namespace glide
       for (const auto &[id, e] : own.elements)
         {
           MeshFileContent::Cell cell;
-          cell.id    = id;
-          cell.type  = e.type;
-          cell.line  = e.line.number;
-          const auto et = classify(e.type, dim);
+          cell.id              = id;
+          cell.type            = e.type;
+          cell.line            = e.line.number;
+          const auto        et = classify(e.type, dim);
           const std::string label =
             "element " + std::to_string(id) + " (type " + e.type + ")";
           if (!et.refusal.empty())
@@ -960,8 +955,7 @@ namespace glide
             else if (cell.problem.empty() && e.nodes[v] != 0 &&
                      c.nodes.count(e.nodes[v]) == 0)
               cell.problem = where(e.line) + ": " + label +
-                             " references node " +
-                             std::to_string(e.nodes[v]) +
+                             " references node " + std::to_string(e.nodes[v]) +
                              ", which the file does not define.";
           if (cell.problem.empty())
             {
@@ -1015,8 +1009,8 @@ namespace glide
 
       // Sets: the part's own ("" instance) and the assembly's for this
       // instance.
-      auto collect = [&](const std::map<std::string, RawSet> &own_sets,
-                         const std::map<std::string, RawSet> *assembly_sets,
+      auto collect = [&](const std::map<std::string, RawSet>   &own_sets,
+                         const std::map<std::string, RawSet>   *assembly_sets,
                          std::map<std::string, std::set<long>> &out) {
         std::map<std::string, std::string> spelled; // upper -> first name
         auto add = [&](const RawSet &s, const std::string &inst) {
@@ -1043,8 +1037,8 @@ namespace glide
       for (const auto &[n, ids] : c.node_sets)
         nset_names.insert(upper(n));
       std::set<std::string> internal;
-      for (const auto *sets : {&own.elsets,
-                               assembly ? &assembly->elsets : &own.elsets})
+      for (const auto *sets :
+           {&own.elsets, assembly ? &assembly->elsets : &own.elsets})
         for (const auto &[u, set] : *sets)
           if (set.internal)
             internal.insert(u);
@@ -1071,8 +1065,8 @@ namespace glide
                   continue;
                 }
               MeshFileContent::Face f;
-              f.cell = entry.id;
-              f.line = entry.line.number;
+              f.cell       = entry.id;
+              f.line       = entry.line.number;
               const auto e = own.elements.find(entry.id);
               require(e != own.elements.end(),
                       where(entry.line) + ": surface '" + surface.name +
@@ -1089,8 +1083,8 @@ namespace glide
                     f.what += " (type " + e->second.type + ")";
                 }
               else
-                f.what = "the free faces of element " +
-                         std::to_string(entry.id);
+                f.what =
+                  "the free faces of element " + std::to_string(entry.id);
               c.surfaces[surface.name].push_back(f);
             }
       };

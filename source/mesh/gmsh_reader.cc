@@ -86,8 +86,10 @@ namespace glide
                "quadratic elements.";
       if (t.dim != 9 && t.dim > dim)
         return "the scene has 'Dimension = " + std::to_string(dim) +
-               "'; write a " + std::to_string(dim) + "D mesh or set "
-               "'Dimension = " + std::to_string(t.dim) + "'.";
+               "'; write a " + std::to_string(dim) +
+               "D mesh or set "
+               "'Dimension = " +
+               std::to_string(t.dim) + "'.";
       if (name.find("triangle") != std::string::npos)
         return "glide meshes 2D bodies with quadrilaterals: recombine the "
                "triangles into quadrilaterals ('Recombine Surface{...};' in "
@@ -119,8 +121,8 @@ namespace glide
               l.pop_back();
             lines.push_back(l);
           }
-        content.file     = file;
-        content.set_word = "physical group";
+        content.file                  = file;
+        content.set_word              = "physical group";
         content.clockwise_is_inverted = false;
       }
 
@@ -223,14 +225,14 @@ namespace glide
       }
 
       void
-      add_node(const long                 id,
+      add_node(const long                   id,
                const std::array<double, 3> &x,
-               const std::size_t           index);
+               const std::size_t            index);
 
       void
-      add_element(const long              id,
-                  const int               type,
-                  const std::vector<int> &physicals,
+      add_element(const long               id,
+                  const int                type,
+                  const std::vector<int>  &physicals,
                   const std::vector<long> &nodes,
                   const std::size_t        index);
 
@@ -249,13 +251,12 @@ namespace glide
       require(prev == content.nodes.end(),
               where(index) + ": node " + std::to_string(id) +
                 " is defined a second time (first at line " +
-                std::to_string(prev == content.nodes.end() ?
-                                 0 :
-                                 prev->second.line) +
+                std::to_string(
+                  prev == content.nodes.end() ? 0 : prev->second.line) +
                 "); every node id must be defined once.");
       MeshFileContent::Node n;
-      n.x                = x;
-      n.line             = index + 1;
+      n.x               = x;
+      n.line            = index + 1;
       content.nodes[id] = n;
     }
 
@@ -272,16 +273,15 @@ namespace glide
       require(prev == element_lines.end(),
               where(index) + ": element " + std::to_string(id) +
                 " is defined a second time (first at line " +
-                std::to_string(prev == element_lines.end() ?
-                                 0 :
-                                 prev->second + 1) +
+                std::to_string(prev == element_lines.end() ? 0 :
+                                                             prev->second + 1) +
                 "); every element id must be defined once.");
       element_lines[id] = index;
 
-      const GmshType t = gmsh_type(type);
+      const GmshType    t     = gmsh_type(type);
       const std::string label = "element " + std::to_string(id) + " (" +
-                                t.name + ", Gmsh type " +
-                                std::to_string(type) + ")";
+                                t.name + ", Gmsh type " + std::to_string(type) +
+                                ")";
       const bool supported = t.order == 1 && t.dim <= dim &&
                              (t.dim != 2 || type == 3) &&
                              (t.dim != 3 || type == 5);
@@ -329,10 +329,9 @@ namespace glide
           // unsupported type explains it better (the triangles on the
           // boundary of tetrahedra).
           if (face_problem.empty())
-            face_problem = where(index) + ": " + label +
-                           " is in the physical group '" +
-                           group_name(t.dim, physicals[0]) +
-                           "': " + advice(t, dim);
+            face_problem =
+              where(index) + ": " + label + " is in the physical group '" +
+              group_name(t.dim, physicals[0]) + "': " + advice(t, dim);
           return;
         }
       require(nodes.size() == expected_nodes(type),
@@ -371,13 +370,14 @@ namespace glide
           if (section.empty())
             continue;
           require(section[0] == '$',
-                  where(index) + ": expected a section such as $Nodes, found '" +
-                    section + "'; is this a Gmsh file?");
+                  where(index) +
+                    ": expected a section such as $Nodes, found '" + section +
+                    "'; is this a Gmsh file?");
           const std::string name = section.substr(1);
           if (name == "MeshFormat")
             {
               std::size_t i;
-              auto        in = line(i, name);
+              auto        in     = line(i, name);
               int         binary = 0, size = 0;
               version = number<double>(in, i, "the format version");
               binary  = number<int>(in, i, "the file type");
@@ -400,9 +400,9 @@ namespace glide
               const int   n  = number<int>(in, i, "the number of names");
               for (int k = 0; k < n; ++k)
                 {
-                  auto      l   = line(i, name);
-                  const int d   = number<int>(l, i, "a dimension");
-                  const int tag = number<int>(l, i, "a physical tag");
+                  auto        l   = line(i, name);
+                  const int   d   = number<int>(l, i, "a dimension");
+                  const int   tag = number<int>(l, i, "a physical tag");
                   std::string rest;
                   std::getline(l, rest);
                   const auto first = rest.find('"'), last = rest.rfind('"');
@@ -452,8 +452,8 @@ namespace glide
                   const long n = number<long>(in, i, "the number of nodes");
                   for (long k = 0; k < n; ++k)
                     {
-                      auto                  l  = line(i, name);
-                      const long            id = number<long>(l, i, "a node id");
+                      auto       l  = line(i, name);
+                      const long id = number<long>(l, i, "a node id");
                       std::array<double, 3> x;
                       for (auto &c : x)
                         c = number<double>(l, i, "a coordinate");
@@ -514,8 +514,7 @@ namespace glide
                           if (t == 0 && tag != 0)
                             physicals.push_back(tag);
                         }
-                      add_element(
-                        id, type, physicals, node_list(l, i), i);
+                      add_element(id, type, physicals, node_list(l, i), i);
                     }
                 }
               else
@@ -524,10 +523,10 @@ namespace glide
                     number<long>(in, i, "the number of element blocks");
                   for (long b = 0; b < blocks; ++b)
                     {
-                      auto      l   = line(i, name);
-                      const int d   = number<int>(l, i, "an entity dimension");
-                      const int tag = number<int>(l, i, "an entity tag");
-                      const int type = number<int>(l, i, "an element type");
+                      auto       l   = line(i, name);
+                      const int  d   = number<int>(l, i, "an entity dimension");
+                      const int  tag = number<int>(l, i, "an entity tag");
+                      const int  type = number<int>(l, i, "an element type");
                       const long n = number<long>(l, i, "a number of elements");
                       const auto it = entity_physicals.find({d, tag});
                       const std::vector<int> physicals =
@@ -537,8 +536,7 @@ namespace glide
                         {
                           auto       e  = line(i, name);
                           const long id = number<long>(e, i, "an element id");
-                          add_element(
-                            id, type, physicals, node_list(e, i), i);
+                          add_element(id, type, physicals, node_list(e, i), i);
                         }
                     }
                 }
@@ -551,8 +549,8 @@ namespace glide
                      lines[next].rfind("$End" + name, 0) != 0)
                 ++next;
               require(next < lines.size(),
-                      where(index) + ": the section $" + name +
-                        " has no $End" + name + ".");
+                      where(index) + ": the section $" + name + " has no $End" +
+                        name + ".");
               ++next;
             }
         }

@@ -184,9 +184,9 @@ namespace glide
 
   template <int dim>
   void
-  build_body_mesh(const MeshParameters                      &m,
-                  const std::string                         &body_name,
-                  Triangulation<dim>                        &tria,
+  build_body_mesh(const MeshParameters &m,
+                  const std::string    &body_name,
+                  Triangulation<dim>   &tria,
                   std::map<types::boundary_id, std::vector<std::string>> &names)
   {
     const Point<dim> c = to_point<dim>(m.center);
@@ -360,9 +360,10 @@ namespace glide
         try
           {
             const auto imported =
-              m.imported ? m.imported :
-                           std::make_shared<const ImportedMesh>(
-                             import_mesh_file(m.file, dim, m.element_set, m.part));
+              m.imported ?
+                m.imported :
+                std::make_shared<const ImportedMesh>(
+                  import_mesh_file(m.file, dim, m.element_set, m.part));
             create_triangulation<dim>(*imported, tria, names);
           }
         catch (const InputError &e)
@@ -393,8 +394,8 @@ namespace glide
 
     for (unsigned int b = 0; b < scene.bodies.size(); ++b)
       {
-        const auto                               &body = scene.bodies[b];
-        Triangulation<dim>                        body_tria;
+        const auto        &body = scene.bodies[b];
+        Triangulation<dim> body_tria;
         std::map<types::boundary_id, std::vector<std::string>> names;
         build_body_mesh<dim>(body.mesh, body.name, body_tria, names);
 

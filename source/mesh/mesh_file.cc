@@ -54,7 +54,7 @@ namespace glide
     /// each divided by the lengths of its edges: +1 for a right angle.
     std::vector<double>
     corner_jacobians(const std::vector<std::array<double, 3>> &x,
-                     const unsigned int                         dim)
+                     const unsigned int                        dim)
     {
       std::vector<double> j;
       for (unsigned int v = 0; v < (1u << dim); ++v)
@@ -179,8 +179,7 @@ namespace glide
                 if (dim == 2)
                   require(content.nodes.at(n).x[2] == 0.,
                           file_line(content.file, content.nodes.at(n).line) +
-                            ": node " + std::to_string(n) +
-                            " has z = " +
+                            ": node " + std::to_string(n) + " has z = " +
                             std::to_string(content.nodes.at(n).x[2]) +
                             ", but the scene is 2D (x, y); a 2D mesh lies "
                             "in the plane z = 0.");
@@ -207,13 +206,13 @@ namespace glide
                               2);
               mesh.smallest_edge = std::min(mesh.smallest_edge, std::sqrt(l));
             }
-        const auto   j = corner_jacobians(x, dim);
-        const double smallest = *std::min_element(j.begin(), j.end());
-        const double largest  = *std::max_element(j.begin(), j.end());
-        const std::string label = file_line(content.file, cell.line) +
+        const auto        j        = corner_jacobians(x, dim);
+        const double      smallest = *std::min_element(j.begin(), j.end());
+        const double      largest  = *std::max_element(j.begin(), j.end());
+        const std::string label    = file_line(content.file, cell.line) +
                                   ": element " + std::to_string(cell.id) +
                                   " (" + cell.type + ")";
-        const std::string area  = dim == 2 ? "area" : "volume";
+        const std::string area = dim == 2 ? "area" : "volume";
         if (std::max(std::abs(smallest), std::abs(largest)) <=
               degenerate_corner ||
             (std::abs(smallest) <= degenerate_corner && largest > 0) ||
@@ -226,8 +225,9 @@ namespace glide
                            "coordinates.");
         if (smallest < 0 && largest > 0)
           throw InputError(
-            label + " is distorted or inverted: it folds over at a corner "
-                    "(a bow-tie or non-convex " +
+            label +
+            " is distorted or inverted: it folds over at a corner "
+            "(a bow-tie or non-convex " +
             std::string(dim == 2 ? "quadrilateral" : "hexahedron") +
             ", or its nodes in the wrong order); check its node list.");
         if (largest < 0 && content.clockwise_is_inverted)
@@ -277,12 +277,12 @@ namespace glide
 
     // Surfaces: faces of the body's boundary.
     std::map<std::vector<unsigned int>, std::set<std::string>> labels;
-    std::set<std::string>                                    surface_names;
+    std::set<std::string>                                      surface_names;
     for (const auto &[name, surface_faces] : content.surfaces)
       {
-        unsigned int n = 0;
+        unsigned int n   = 0;
         auto         add = [&](const std::vector<unsigned int> &k,
-                       const MeshFileContent::Face      &f) {
+                       const MeshFileContent::Face     &f) {
           const auto it = faces.find(k);
           require(it != faces.end(),
                   file_line(content.file, f.line) + ": " + f.what +
@@ -292,8 +292,8 @@ namespace glide
                   file_line(content.file, f.line) + ": " + f.what +
                     " of surface '" + name +
                     "' lies inside the body, between two elements; glide's "
-                    "surfaces lie on the boundary of a body (split the body "
-                    "into two element sets, or remove the face).");
+                            "surfaces lie on the boundary of a body (split the body "
+                            "into two element sets, or remove the face).");
           labels[k].insert(name);
           ++n;
         };
@@ -355,8 +355,8 @@ namespace glide
           auto [c, inserted] =
             combination.emplace(it->second, combination.size() + 1);
           if (inserted)
-            mesh.surfaces[c->second] = std::vector<std::string>(
-              it->second.begin(), it->second.end());
+            mesh.surfaces[c->second] =
+              std::vector<std::string>(it->second.begin(), it->second.end());
           mesh.faces.emplace_back(k, c->second);
         }
     if (unlabelled)
@@ -397,7 +397,7 @@ namespace glide
                    const std::string &part)
   {
     std::string extension = std::filesystem::path(file).extension().string();
-    extension              = lower(extension);
+    extension             = lower(extension);
     if (extension == ".msh")
       {
         require(part.empty(),
@@ -416,10 +416,10 @@ namespace glide
 
   template <int dim>
   void
-  create_triangulation(const ImportedMesh &mesh,
-                       Triangulation<dim> &tria,
-                       std::map<types::boundary_id, std::vector<std::string>>
-                         &names)
+  create_triangulation(
+    const ImportedMesh                                     &mesh,
+    Triangulation<dim>                                     &tria,
+    std::map<types::boundary_id, std::vector<std::string>> &names)
   {
     std::vector<Point<dim>> vertices;
     for (const auto &x : mesh.vertices)
@@ -462,21 +462,21 @@ namespace glide
       {
         std::ostringstream s;
         e.print_info(s);
-        throw InputError("Mesh file '" + mesh.file +
-                         "': deal.II cannot build a mesh of its cells: " +
-                         s.str());
+        throw InputError(
+          "Mesh file '" + mesh.file +
+          "': deal.II cannot build a mesh of its cells: " + s.str());
       }
     names = mesh.surfaces;
   }
 
   template void
-  create_triangulation<2>(const ImportedMesh &,
-                          Triangulation<2> &,
-                          std::map<types::boundary_id, std::vector<std::string>>
-                            &);
+  create_triangulation<2>(
+    const ImportedMesh &,
+    Triangulation<2> &,
+    std::map<types::boundary_id, std::vector<std::string>> &);
   template void
-  create_triangulation<3>(const ImportedMesh &,
-                          Triangulation<3> &,
-                          std::map<types::boundary_id, std::vector<std::string>>
-                            &);
+  create_triangulation<3>(
+    const ImportedMesh &,
+    Triangulation<3> &,
+    std::map<types::boundary_id, std::vector<std::string>> &);
 } // namespace glide

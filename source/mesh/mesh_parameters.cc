@@ -206,7 +206,8 @@ namespace glide
     part        = Utilities::trim(prm.get("Part"));
     imported.reset();
     require(type == "file" || (element_set.empty() && part.empty()),
-            "Parameters '" + path + "/Element set' and 'Part' pick a body "
+            "Parameters '" + path +
+              "/Element set' and 'Part' pick a body "
               "out of a mesh file; they need 'Mesh = file'.");
     if (type == "file")
       {

@@ -25,8 +25,8 @@ namespace
 {
   template <int dim>
   double
-  measure_after(const std::string                         &type,
-                const unsigned int                         refinements,
+  measure_after(const std::string &type,
+                const unsigned int refinements,
                 std::map<types::boundary_id, std::vector<std::string>> &names)
   {
     MeshParameters m;
@@ -55,7 +55,7 @@ namespace
 
 TEST(Mesh, RoundShapesFollowTheirManifolds)
 {
-  const double                              pi = numbers::PI;
+  const double                                           pi = numbers::PI;
   std::map<types::boundary_id, std::vector<std::string>> names;
   EXPECT_NEAR(measure_after<2>("cylinder", 5, names), pi * 4., 2e-3);
   EXPECT_EQ(values(names), (std::set<std::string>{"outer"}));
@@ -79,7 +79,7 @@ TEST(Mesh, HalfCylinderIsTheLowerHalf)
   m.type   = "hertz";
   m.center = {0., 1.};
   m.radius = 1.;
-  Triangulation<2>                          tria;
+  Triangulation<2>                                       tria;
   std::map<types::boundary_id, std::vector<std::string>> names;
   build_body_mesh<2>(m, "b", tria, names);
   tria.refine_global(2); // the lowest point is a vertex from one refinement on
@@ -144,7 +144,7 @@ TEST(Mesh, GmshPhysicalNamesBecomeSurfaces)
   MeshParameters m;
   m.type = "file";
   m.file = std::string(GLIDE_TEST_DATA) + "/two_quads.msh";
-  Triangulation<2>                          tria;
+  Triangulation<2>                                       tria;
   std::map<types::boundary_id, std::vector<std::string>> names;
   build_body_mesh<2>(m, "slab", tria, names);
   EXPECT_EQ(tria.n_active_cells(), 2u);
@@ -158,7 +158,7 @@ TEST(Mesh, UnreadableMeshFileIsAnInputError)
   m.type = "file";
   m.file =
     glide_test::write_file("broken.msh", "$MeshFormat\nthis is not gmsh\n");
-  Triangulation<2>                          tria;
+  Triangulation<2>                                       tria;
   std::map<types::boundary_id, std::vector<std::string>> names;
   EXPECT_THROW(build_body_mesh<2>(m, "slab", tria, names), InputError);
 }
@@ -221,8 +221,10 @@ TEST(Mesh, AbaqusBodiesByElementSetWithAnyNumbering)
   // and 1001-1015); each body is one *ELSET. Surfaces and node sets belong
   // to the body whose cells they lie on; the element set name is
   // case-insensitive (the file says "Body2").
-  const auto lower = import_mesh_file(mesh_data("two_bodies.inp"), 2, "BODY1", "");
-  const auto upper = import_mesh_file(mesh_data("two_bodies.inp"), 2, "body2", "");
+  const auto lower =
+    import_mesh_file(mesh_data("two_bodies.inp"), 2, "BODY1", "");
+  const auto upper =
+    import_mesh_file(mesh_data("two_bodies.inp"), 2, "body2", "");
   EXPECT_EQ(lower.cells.size(), 8u);
   EXPECT_EQ(lower.vertices.size(), 15u);
   EXPECT_EQ(upper.cells.size(), 8u);
@@ -358,8 +360,7 @@ TEST(Mesh, AbaqusPartsAndInstances)
   EXPECT_NEAR(surface_centers(block, "Bottom").at(0)[1], 1., 1e-12);
   const auto base = import_mesh_file(mesh_data("parts.inp"), 2, "", "Base");
   EXPECT_EQ(base.node_sets.at("Held").size(), 2u);
-  EXPECT_THROW(import_mesh_file(mesh_data("parts.inp"), 2, "", ""),
-               InputError);
+  EXPECT_THROW(import_mesh_file(mesh_data("parts.inp"), 2, "", ""), InputError);
 }
 
 TEST(Mesh, GmshFormat41AndHexahedra)
@@ -373,7 +374,8 @@ TEST(Mesh, GmshFormat41AndHexahedra)
   EXPECT_EQ(surface_centers(plate, "sides").size(), 2u);
   ASSERT_EQ(plate.node_sets.at("corner").size(), 1u);
   EXPECT_EQ(plate.node_sets.at("corner")[0][0], 2.);
-  const auto by_group = import_mesh_file(mesh_data("plate41.msh"), 2, "plate", "");
+  const auto by_group =
+    import_mesh_file(mesh_data("plate41.msh"), 2, "plate", "");
   EXPECT_EQ(by_group.cells.size(), 2u);
 
   const auto box = import_mesh_file(mesh_data("box41.msh"), 3, "", "");
@@ -391,8 +393,7 @@ TEST(Mesh, NodeSetPointsSeparatedBySemicolons)
 {
   // Issue 13: 'Points = 0, 10;0, 5' is two points, with or without blanks
   // around ';' and with a trailing ';'.
-  for (const std::string points :
-       {"0, 10;0, 5", "0,10 ; 0,5", "0, 10; 0, 5;"})
+  for (const std::string points : {"0, 10;0, 5", "0,10 ; 0,5", "0, 10; 0, 5;"})
     {
       ParameterHandler prm;
       NodeSetParameters::declare_parameters(prm);

@@ -67,7 +67,7 @@ namespace glide
      */
     struct Face
     {
-      std::vector<long> nodes;  ///< corner nodes; empty: all free faces
+      std::vector<long> nodes;    ///< corner nodes; empty: all free faces
       long              cell = 0; ///< the cell it belongs to, 0: unknown
       std::string       what;     ///< e.g. "face S3 of element 12"
       unsigned int      line = 0;
@@ -93,7 +93,8 @@ namespace glide
     std::vector<std::vector<unsigned int>> cells;
     /// Boundary faces that belong to at least one surface, as vertex
     /// indices, with their boundary id.
-    std::vector<std::pair<std::vector<unsigned int>, dealii::types::boundary_id>>
+    std::vector<
+      std::pair<std::vector<unsigned int>, dealii::types::boundary_id>>
       faces;
     /// Boundary id -> the names of the surfaces its faces belong to. A face
     /// in several surfaces gets the id of that combination; id 0 is the
