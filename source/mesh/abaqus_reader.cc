@@ -926,10 +926,11 @@ namespace glide
           auto n = node;
           if (instance)
             {
-              if (!instance->rotation.empty())
-                n.x = rotate(n.x, instance->rotation);
+              // Abaqus translates an instance first, then rotates it.
               for (unsigned int d = 0; d < 3; ++d)
                 n.x[d] += instance->translation[d];
+              if (!instance->rotation.empty())
+                n.x = rotate(n.x, instance->rotation);
             }
           c.nodes[id] = n;
         }

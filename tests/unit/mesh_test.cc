@@ -361,6 +361,20 @@ TEST(Mesh, AbaqusPartsAndInstances)
   const auto base = import_mesh_file(mesh_data("parts.inp"), 2, "", "Base");
   EXPECT_EQ(base.node_sets.at("Held").size(), 2u);
   EXPECT_THROW(import_mesh_file(mesh_data("parts.inp"), 2, "", ""), InputError);
+
+  // An instance translated by (1, 0) and then (as in Abaqus) turned by 90
+  // degrees about the z axis through the origin: node (1, 1) -> (2, 1) ->
+  // (-1, 2).
+  const std::string rotated = glide_test::write_file(
+    "rotated.inp",
+    "*Part, name=P\n*Node\n1, 0., 0.\n2, 1., 0.\n3, 1., 1.\n4, 0., 1.\n"
+    "*Element, type=CPE4\n1, 1, 2, 3, 4\n*Nset, nset=N3\n3\n*End Part\n"
+    "*Assembly, name=A\n*Instance, name=I, part=P\n 1., 0., 0.\n"
+    " 0., 0., 0., 0., 0., 1., 90.\n*End Instance\n*End Assembly\n");
+  const auto turned = import_mesh_file(rotated, 2, "", "");
+  ASSERT_EQ(turned.node_sets.at("N3").size(), 1u);
+  EXPECT_NEAR(turned.node_sets.at("N3")[0][0], -1., 1e-12);
+  EXPECT_NEAR(turned.node_sets.at("N3")[0][1], 2., 1e-12);
 }
 
 TEST(Mesh, GmshFormat41AndHexahedra)
