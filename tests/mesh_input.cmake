@@ -72,6 +72,10 @@ glide_error_test(mesh.element_set_needs_file "Body block/Element set' and 'Part'
 # A node set of the file that is not on the body the scene names it for.
 glide_error_test(mesh.node_set_of_other_body "Boundary condition hold/Surface' = 'lower.LOADED': the node set 'LOADED' of Mesh file '.*two_bodies.inp' has no corner node of a cell of this body"
   ${SCENES}/mesh-import/block-on-block-inp.prm --set "Boundary condition hold/Surface=lower.LOADED")
+# A surface of the file that lies on the other body.
+glide_error_test(mesh.surface_of_other_body "Contact pair interface/Master' = 'lower.SLAVE': the surface 'SLAVE' of Mesh file '.*two_bodies.inp' has no face on the cells of this body \\(element set 'BODY1'\\)"
+  ${SCENES}/mesh-import/block-on-block-inp.prm --set "Contact pair interface/Master=lower.SLAVE")
+
 # Node sets of points separated by ';' (issue 13): the message names the
 # point that misses the mesh, (0, 6), and the distance to its nearest
 # vertex, (0, 5); a point that is not a point is named as written.

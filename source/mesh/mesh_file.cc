@@ -334,6 +334,11 @@ namespace glide
           }
         if (n > 0)
           surface_names.insert(name);
+        else if (!element_set.empty())
+          mesh.unavailable[name] = "the surface '" + name + "' of " + file +
+                                   " has no face on the cells of this body "
+                                   "(element set '" +
+                                   element_set + "')";
         else
           require(!element_set.empty(),
                   file + ": the surface '" + name +
