@@ -136,10 +136,12 @@ namespace glide
     std::vector<std::vector<double>> points;
     double                           tol = 0;
     std::set<types::boundary_id>     ids;
+    unsigned int                     body = numbers::invalid_unsigned_int;
     if (scene_node_sets.count(surface))
       {
         points = scene_node_sets.at(surface)->points;
         tol    = scene_node_sets.at(surface)->tolerance;
+        body   = scene_node_sets.at(surface)->body;
       }
     else
       for (const auto &name : Utilities::split_string_list(surface, ','))
@@ -150,8 +152,14 @@ namespace glide
                                       nodes;
     std::set<types::global_dof_index> seen;
     std::vector<unsigned int>         found(points.size(), 0);
+    // Distance to the nearest vertex of each point, for the message when
+    // none is within the tolerance.
+    std::vector<double> nearest(points.size(),
+                                std::numeric_limits<double>::max());
     for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned() || (!owned_only && cell->is_ghost()))
+      if ((cell->is_locally_owned() || (!owned_only && cell->is_ghost())) &&
+          (body == numbers::invalid_unsigned_int ||
+           cell->material_id() == body))
         for (const auto v : cell->vertex_indices())
           {
             const Point<dim> x   = cell->vertex(v);
@@ -161,6 +169,7 @@ namespace glide
                 Point<dim> p;
                 for (unsigned int d = 0; d < dim; ++d)
                   p[d] = points[i][d];
+                nearest[i] = std::min(nearest[i], x.distance(p));
                 if (x.distance(p) <= tol)
                   {
                     hit = true;
@@ -186,14 +195,22 @@ namespace glide
           }
     for (unsigned int i = 0; i < points.size(); ++i)
       {
+        if (Utilities::MPI::sum(found[i], comm) > 0)
+          continue;
         std::ostringstream p;
         for (unsigned int d = 0; d < points[i].size(); ++d)
-          p << (d ? ", " : "") << points[i][d];
-        require(Utilities::MPI::sum(found[i], comm) > 0,
-                "Node set '" + surface + "': no mesh vertex within " +
-                  std::to_string(tol) + " of the point (" + p.str() +
-                  "); check 'Node set " + surface +
-                  "/Points' or raise its 'Tolerance'.");
+          p << (d == 0 ? "" : ", ") << points[i][d];
+        std::ostringstream why;
+        why << "Node set '" << surface << "': no mesh vertex within " << tol
+            << " of its point " << i + 1 << " of " << points.size() << " ("
+            << p.str() << "); the nearest vertex"
+            << (body == numbers::invalid_unsigned_int ?
+                  std::string() :
+                  " of body '" + scene.bodies[body].name + "'")
+            << " is " << Utilities::MPI::min(nearest[i], comm)
+            << " away. Check 'Node set " << surface
+            << "/Points' or raise its 'Tolerance'.";
+        throw InputError(why.str());
       }
     require(Utilities::MPI::sum(static_cast<unsigned int>(nodes.size()), comm) >
               0,

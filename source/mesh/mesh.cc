@@ -1,4 +1,5 @@
 #include <glide/mesh/mesh.h>
+#include <glide/mesh/mesh_file.h>
 #include <glide/scene/input_error.h>
 
 #include <deal.II/base/mpi.h>
@@ -177,48 +178,16 @@ namespace glide
           if (cell->vertex(v).distance(target) < tolerance)
             cell->vertex(v) = target;
     }
-
-    /// Read the $PhysicalNames section of a Gmsh file: tag -> name for
-    /// groups of dimension @p face_dim.
-    std::map<types::boundary_id, std::string>
-    gmsh_physical_names(const std::string &file, const int face_dim)
-    {
-      std::map<types::boundary_id, std::string> names;
-      std::ifstream                             in(file);
-      std::string                               line;
-      while (std::getline(in, line))
-        if (line.rfind("$PhysicalNames", 0) == 0)
-          {
-            unsigned int n = 0;
-            in >> n;
-            for (unsigned int i = 0; i < n; ++i)
-              {
-                int         d, tag;
-                std::string name;
-                in >> d >> tag;
-                std::getline(in, name); // the rest of the line: "a name"
-                const auto first = name.find('"'), last = name.rfind('"');
-                if (first != std::string::npos && last > first)
-                  name = name.substr(first + 1, last - first - 1);
-                else
-                  name = Utilities::trim(name);
-                if (d == face_dim)
-                  names[tag] = name;
-              }
-            break;
-          }
-      return names;
-    }
   } // namespace
 
 
 
   template <int dim>
   void
-  build_body_mesh(const MeshParameters                      &m,
-                  const std::string                         &body_name,
-                  Triangulation<dim>                        &tria,
-                  std::map<types::boundary_id, std::string> &names)
+  build_body_mesh(const MeshParameters &m,
+                  const std::string    &body_name,
+                  Triangulation<dim>   &tria,
+                  std::map<types::boundary_id, std::vector<std::string>> &names)
   {
     const Point<dim> c = to_point<dim>(m.center);
     names.clear();
@@ -233,7 +202,7 @@ namespace glide
                                                   /*colorize=*/true);
         const char *n[] = {"left", "right", "bottom", "top", "back", "front"};
         for (unsigned int i = 0; i < 2 * dim; ++i)
-          names[i] = n[i];
+          names[i] = {n[i]};
       }
     else if (m.type == "hertz" && (dim == 3 || m.axisymmetric))
       {
@@ -263,11 +232,11 @@ namespace glide
         Point<dim> lowest = c;
         lowest[1] -= m.radius;
         snap_vertex(tria, lowest, 1e-8 * m.radius);
-        names[0] = "curved";
-        names[1] = "flat";
-        names[2] = dim == 2 ? "axis" : "x0";
+        names[0] = {"curved"};
+        names[1] = {"flat"};
+        names[2] = {dim == 2 ? "axis" : "x0"};
         if (dim == 3)
-          names[3] = "z0";
+          names[3] = {"z0"};
       }
     else if (m.type == "cylinder" || m.type == "half cylinder" ||
              m.type == "hertz")
@@ -280,13 +249,13 @@ namespace glide
             lowest[1] -= m.radius;
             snap_vertex(tria, lowest, 1e-8 * m.radius);
           }
-        names[0] = half ? "curved" : "outer";
+        names[0] = {half ? "curved" : "outer"};
         if (half)
-          names[1] = "flat";
+          names[1] = {"flat"};
         if (dim == 3)
           {
-            names[10] = "bottom";
-            names[11] = "top";
+            names[10] = {"bottom"};
+            names[11] = {"top"};
           }
       }
     else if (m.type == "half ring")
@@ -307,9 +276,9 @@ namespace glide
                                       true);
             tria.set_all_manifold_ids(0);
             tria.set_manifold(0, SphericalManifold<2>(c));
-            names[0] = "inner";
-            names[1] = "outer";
-            names[2] = "ends";
+            names[0] = {"inner"};
+            names[1] = {"outer"};
+            names[2] = {"ends"};
           }
         else
           throw InputError("Body '" + body_name +
@@ -329,10 +298,10 @@ namespace glide
                                       true);
             tria.set_all_manifold_ids(0);
             tria.set_manifold(0, SphericalManifold<2>(c));
-            names[0] = "inner";
-            names[1] = "outer";
-            names[2] = "x0";
-            names[3] = "y0";
+            names[0] = {"inner"};
+            names[1] = {"outer"};
+            names[2] = {"x0"};
+            names[3] = {"y0"};
           }
         else
           throw InputError("Body '" + body_name +
@@ -361,12 +330,12 @@ namespace glide
             axis[2] = 1.;
             tria.set_manifold(0, CylindricalManifold<3>(axis, c));
           }
-        names[0] = "inner";
-        names[1] = "outer";
+        names[0] = {"inner"};
+        names[1] = {"outer"};
         if (dim == 3)
           {
-            names[10] = "bottom";
-            names[11] = "top";
+            names[10] = {"bottom"};
+            names[11] = {"top"};
           }
       }
     else if (m.type == "sphere octant")
@@ -378,40 +347,29 @@ namespace glide
         label_round_boundary<dim>(tria, c, {{m.radius, 0}}, planes, 0., false);
         set_curved_faces(tria, {0});
         tria.set_manifold(0, SphericalManifold<dim>(c));
-        names[0] = "curved";
-        names[1] = "x0";
-        names[2] = "y0";
+        names[0] = {"curved"};
+        names[1] = {"x0"};
+        names[2] = {"y0"};
         if (dim == 3)
-          names[3] = "z0";
+          names[3] = {"z0"};
       }
     else if (m.type == "file")
       {
-        GridIn<dim>   grid_in(tria);
-        std::ifstream in(m.file);
-        const bool    msh = m.is_gmsh();
+        // glide's own readers (mesh_file.h): the scene reader has read and
+        // checked the file already; unit tests may call this directly.
         try
           {
-            if (msh)
-              grid_in.read_msh(in);
-            else
-              grid_in.read_abaqus(in);
+            const auto imported =
+              m.imported ?
+                m.imported :
+                std::make_shared<const ImportedMesh>(
+                  import_mesh_file(m.file, dim, m.element_set, m.part));
+            create_triangulation<dim>(*imported, tria, names);
           }
-        catch (const ExceptionBase &e)
+        catch (const InputError &e)
           {
-            std::ostringstream s;
-            e.print_info(s);
-            throw InputError(
-              "Body '" + body_name + "': cannot read the mesh file '" + m.file +
-              "' as a " + std::to_string(dim) + "D mesh: " + s.str());
+            throw InputError("Body '" + body_name + "': " + e.what());
           }
-        require(tria.n_active_cells() > 0,
-                "Body '" + body_name + "': the mesh file '" + m.file +
-                  "' has no cells.");
-        std::map<types::boundary_id, std::string> physical;
-        if (msh)
-          physical = gmsh_physical_names(m.file, dim - 1);
-        for (const auto id : tria.get_boundary_ids())
-          names[id] = physical.count(id) ? physical[id] : std::to_string(id);
       }
     else
       throw InputError("Body '" + body_name + "': unknown mesh type '" +
@@ -425,6 +383,9 @@ namespace glide
   Mesh<dim>::build(const Scene                               &scene,
                    parallel::distributed::Triangulation<dim> &tria)
   {
+    for (const auto &ns : scene.node_sets)
+      if (ns.body != numbers::invalid_unsigned_int)
+        file_node_sets.push_back(ns.name);
     std::vector<Point<dim>>                                      vertices;
     std::vector<CellData<dim>>                                   cells;
     SubCellData                                                  subcell;
@@ -433,18 +394,22 @@ namespace glide
 
     for (unsigned int b = 0; b < scene.bodies.size(); ++b)
       {
-        const auto                               &body = scene.bodies[b];
-        Triangulation<dim>                        body_tria;
-        std::map<types::boundary_id, std::string> names;
+        const auto        &body = scene.bodies[b];
+        Triangulation<dim> body_tria;
+        std::map<types::boundary_id, std::vector<std::string>> names;
         build_body_mesh<dim>(body.mesh, body.name, body_tria, names);
 
         std::map<types::boundary_id, types::boundary_id> new_id;
-        for (const auto &[id, n] : names)
+        for (const auto &[id, surfaces] : names)
           {
             new_id[id] = next_id;
-            surface_ids[body.name + "." + n].insert(next_id);
+            for (const auto &n : surfaces)
+              surface_ids[body.name + "." + n].insert(next_id);
             ++next_id;
           }
+        if (body.mesh.imported)
+          for (const auto &[n, why] : body.mesh.imported->unavailable)
+            unavailable[body.name + "." + n] = why;
         const types::manifold_id manifold_offset = 10 * b;
         for (const auto id : body_tria.get_manifold_ids())
           if (id != numbers::flat_manifold_id)
@@ -607,6 +572,10 @@ namespace glide
                      const std::string &parameter) const
   {
     const auto it = surface_ids.find(name);
+    if (it == surface_ids.end() && unavailable.count(name))
+      throw InputError("Parameter '" + parameter + "' = '" + name +
+                       "': " + unavailable.at(name) +
+                       ". The scene's surfaces are: " + surface_list() + ".");
     require(it != surface_ids.end(),
             "Parameter '" + parameter + "' = '" + name +
               "': no such surface. The scene's surfaces are: " +
@@ -628,6 +597,11 @@ namespace glide
     std::string list;
     for (const auto &[n, ids] : surface_ids)
       list += (list.empty() ? "" : ", ") + n;
+    std::string sets;
+    for (const auto &n : file_node_sets)
+      sets += (sets.empty() ? "" : ", ") + n;
+    if (!sets.empty())
+      list += " (node sets from mesh files: " + sets + ")";
     return list;
   }
 
@@ -637,10 +611,10 @@ namespace glide
   build_body_mesh<2>(const MeshParameters &,
                      const std::string &,
                      Triangulation<2> &,
-                     std::map<types::boundary_id, std::string> &);
+                     std::map<types::boundary_id, std::vector<std::string>> &);
   template void
   build_body_mesh<3>(const MeshParameters &,
                      const std::string &,
                      Triangulation<3> &,
-                     std::map<types::boundary_id, std::string> &);
+                     std::map<types::boundary_id, std::vector<std::string>> &);
 } // namespace glide

@@ -95,13 +95,35 @@ namespace glide
       "disk (2D; a sphere in an axisymmetric scene) or sphere octant (3D) "
       "with x, y (, z) >= Center (surfaces: curved, x0, y0 (, z0)). file: "
       "read 'Mesh file'.");
-    prm.declare_entry("Mesh file",
-                      "",
-                      Patterns::Anything(),
-                      "Gmsh .msh (physical groups of boundary faces become "
-                      "surfaces, named by $PhysicalNames or by number) or "
-                      "Abaqus .inp (surfaces become <body>.<number>). A "
-                      "relative path is taken relative to the scene file.");
+    prm.declare_entry(
+      "Mesh file",
+      "",
+      Patterns::Anything(),
+      "Gmsh .msh (ASCII 2.2 or 4.1: physical groups of boundary faces "
+      "become surfaces <body>.<name>, named by $PhysicalNames or by "
+      "number; physical groups of points are node sets) or Abaqus .inp "
+      "(*SURFACE, element-based, become surfaces <body>.<NAME>; *NSET, "
+      "node-based *SURFACE and the nodes of *ELSET become node sets "
+      "<body>.<NAME>). Quadrilaterals (2D) and hexahedra (3D) only; "
+      "second-order Abaqus elements are read with their corner nodes if "
+      "their edges are straight. See doc/mesh-import.md. A relative path "
+      "is taken relative to the scene file.");
+    prm.declare_entry(
+      "Element set",
+      "",
+      Patterns::Anything(),
+      "The body's cells in a mesh file that holds several bodies: the name "
+      "of an Abaqus *ELSET (case-insensitive) or of a Gmsh physical group "
+      "of cells. Surfaces and node sets of the file then belong to this "
+      "body where they lie on its cells. Empty: every cell of the file (or "
+      "of the 'Part').");
+    prm.declare_entry(
+      "Part",
+      "",
+      Patterns::Anything(),
+      "Abaqus files with *PART and *ASSEMBLY: the part (instanced once) or "
+      "the *INSTANCE that is this body, placed as the instance says. Empty: "
+      "the file's only instance.");
 
     prm.enter_subsection("Block");
     prm.declare_entry("Lower corner",
@@ -178,8 +200,15 @@ namespace glide
                                    const std::string &scene_directory,
                                    const unsigned int dim)
   {
-    type = prm.get("Mesh");
-    file = prm.get("Mesh file");
+    type        = prm.get("Mesh");
+    file        = prm.get("Mesh file");
+    element_set = Utilities::trim(prm.get("Element set"));
+    part        = Utilities::trim(prm.get("Part"));
+    imported.reset();
+    require(type == "file" || (element_set.empty() && part.empty()),
+            "Parameters '" + path +
+              "/Element set' and 'Part' pick a body "
+              "out of a mesh file; they need 'Mesh = file'.");
     if (type == "file")
       {
         require(!file.empty(),
@@ -198,6 +227,10 @@ namespace glide
         require(msh || inp,
                 "Parameter '" + path + "/Mesh file' = '" + file +
                   "': only Gmsh '.msh' and Abaqus '.inp' files are read.");
+        // Read and check the file now, before anything is computed or
+        // written; its node sets become node sets of the scene.
+        imported = std::make_shared<const ImportedMesh>(
+          import_mesh_file(file, dim, element_set, part));
       }
 
     prm.enter_subsection("Block");

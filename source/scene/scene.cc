@@ -300,7 +300,21 @@ namespace glide
       {
         const std::string path = "Body " + body.name;
         prm.enter_subsection(path);
-        body.mesh.parse_parameters(prm, path, directory, dimension);
+        try
+          {
+            body.mesh.parse_parameters(prm, path, directory, dimension);
+          }
+        catch (const InputError &e)
+          {
+            // Mistakes in the mesh file name the file and line; say which
+            // body it is.
+            const std::string what = e.what();
+            if (what.rfind("Mesh file", 0) == 0 ||
+                what.rfind("Abaqus file", 0) == 0 ||
+                what.rfind("Gmsh file", 0) == 0)
+              throw InputError("Body '" + body.name + "': " + what);
+            throw;
+          }
         body.mesh.axisymmetric = (analysis == AnalysisType::axisymmetric);
         body.material.parse_parameters(prm, path);
         body.body_force = prm.get("Body force");
@@ -343,6 +357,21 @@ namespace glide
         ns.parse_parameters(prm, ns.name, dimension);
         prm.leave_subsection();
       }
+    // Node sets of mesh files: <body>.<set>, on that body's vertices only.
+    // The vertices of a body are copies of the file's nodes, so a tolerance
+    // far below the smallest edge finds exactly them.
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      if (bodies[b].mesh.imported)
+        for (const auto &[set, points] : bodies[b].mesh.imported->node_sets)
+          {
+            NodeSetParameters ns;
+            ns.name      = bodies[b].name + "." + set;
+            ns.body      = b;
+            ns.tolerance = 1e-6 * bodies[b].mesh.imported->smallest_edge;
+            for (const auto &x : points)
+              ns.points.emplace_back(x.begin(), x.begin() + dimension);
+            node_sets.push_back(ns);
+          }
 
     for (auto &cp : contact_pairs)
       {

@@ -55,13 +55,18 @@ namespace glide
   /**
    * A named node set: the mesh vertices closest to given points (each point
    * must find a vertex within the tolerance). Every surface is a node set
-   * too, under its own name.
+   * too, under its own name. Node sets of mesh files (`<body>.<set>`) are
+   * added by the scene with the coordinates of their nodes and @p body set,
+   * so that they never pick a vertex of another body at the same place.
    */
   struct NodeSetParameters
   {
     std::string                      name;
     std::vector<std::vector<double>> points;
     double                           tolerance = 1e-8;
+    /// The body (index) whose vertices the set selects; all bodies if
+    /// invalid (node sets declared in the scene).
+    unsigned int body = static_cast<unsigned int>(-1);
 
     static void
     declare_parameters(dealii::ParameterHandler &prm);

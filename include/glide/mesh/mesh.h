@@ -49,7 +49,8 @@ namespace glide
       return surface_ids;
     }
 
-    /// The names of all surfaces, comma-separated (for messages and logs).
+    /// The names of all surfaces, comma-separated, followed by the node sets
+    /// read from mesh files (for messages and logs).
     std::string
     surface_list() const;
 
@@ -63,17 +64,25 @@ namespace glide
   private:
     std::map<std::string, std::set<dealii::types::boundary_id>> surface_ids;
     double                                                      size = 1.;
+    /// Node sets of mesh files (<body>.<set>), for the list of surfaces.
+    std::vector<std::string> file_node_sets;
+    /// Node sets of mesh files that are not node sets of a body, with the
+    /// reason, for the message when the scene names one.
+    std::map<std::string, std::string> unavailable;
   };
 
   /**
    * Build the coarse mesh of one body in @p tria, with surfaces as boundary
-   * ids and their names in @p names (without the body prefix). Curved
-   * boundaries get manifold ids and manifolds. Exposed for unit tests.
+   * ids and their names in @p names (without the body prefix): the faces
+   * with one boundary id belong to every surface named for it (faces of a
+   * mesh file can be in several surfaces). Curved boundaries get manifold
+   * ids and manifolds. Exposed for unit tests.
    */
   template <int dim>
   void
-  build_body_mesh(const MeshParameters                              &parameters,
-                  const std::string                                 &body_name,
-                  dealii::Triangulation<dim>                        &tria,
-                  std::map<dealii::types::boundary_id, std::string> &names);
+  build_body_mesh(
+    const MeshParameters                                           &parameters,
+    const std::string                                              &body_name,
+    dealii::Triangulation<dim>                                     &tria,
+    std::map<dealii::types::boundary_id, std::vector<std::string>> &names);
 } // namespace glide

@@ -1,7 +1,10 @@
 #pragma once
 
+#include <glide/mesh/mesh_file.h>
+
 #include <deal.II/base/parameter_handler.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -19,6 +22,13 @@ namespace glide
     /// Mesh file (Gmsh .msh or Abaqus .inp) for type "file"; relative paths
     /// are taken relative to the scene file.
     std::string file;
+    /// The body's cells in the file: an element set (Abaqus *ELSET, Gmsh
+    /// physical group) and/or an Abaqus part or instance; empty: all.
+    std::string element_set;
+    std::string part;
+    /// The body as read from the file when the scene was read (null for
+    /// built-in meshes; build_body_mesh() reads the file if it is null).
+    std::shared_ptr<const ImportedMesh> imported;
 
     // Block
     std::vector<double>       lower_corner{0., 0., 0.};

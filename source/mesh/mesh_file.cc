@@ -1,0 +1,487 @@
+#include <glide/mesh/abaqus_reader.h>
+#include <glide/mesh/gmsh_reader.h>
+#include <glide/mesh/mesh_file.h>
+#include <glide/scene/input_error.h>
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+namespace glide
+{
+  using namespace dealii;
+
+  namespace
+  {
+    std::string
+    lower(std::string s)
+    {
+      for (auto &c : s)
+        c = std::tolower(static_cast<unsigned char>(c));
+      return s;
+    }
+
+    /// Corner positions (deal.II's lexicographic order) of each face of a
+    /// quadrilateral or hexahedron, as GeometryInfo<dim> numbers them.
+    const std::vector<std::vector<unsigned int>> &
+    cell_faces(const unsigned int dim)
+    {
+      static const std::vector<std::vector<unsigned int>> quad{{0, 2},
+                                                               {1, 3},
+                                                               {0, 1},
+                                                               {2, 3}};
+      static const std::vector<std::vector<unsigned int>> hex{{0, 2, 4, 6},
+                                                              {1, 3, 5, 7},
+                                                              {0, 1, 4, 5},
+                                                              {2, 3, 6, 7},
+                                                              {0, 1, 2, 3},
+                                                              {4, 5, 6, 7}};
+      return dim == 2 ? quad : hex;
+    }
+
+    /// A cell whose corner Jacobian (relative to the product of its edge
+    /// lengths there) is below this is degenerate: a zero angle, a zero
+    /// edge, or corners on one line (zero area) or in one plane (zero
+    /// volume). Far below any usable element (a 1e-6 rad angle) and far
+    /// above round-off.
+    constexpr double degenerate_corner = 1e-8;
+
+    /// The signed corner Jacobians of a cell (vertices in deal.II's order),
+    /// each divided by the lengths of its edges: +1 for a right angle.
+    std::vector<double>
+    corner_jacobians(const std::vector<std::array<double, 3>> &x,
+                     const unsigned int                        dim)
+    {
+      std::vector<double> j;
+      for (unsigned int v = 0; v < (1u << dim); ++v)
+        {
+          // Edges from corner v along each coordinate direction of the
+          // reference cell, pointing into the cell.
+          std::array<std::array<double, 3>, 3> e{};
+          double                               lengths = 1.;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const unsigned int w    = v ^ (1u << d);
+              const double       sign = (v & (1u << d)) ? -1. : 1.;
+              double             l    = 0;
+              for (unsigned int c = 0; c < 3; ++c)
+                {
+                  e[d][c] = sign * (x[w][c] - x[v][c]);
+                  l += e[d][c] * e[d][c];
+                }
+              lengths *= std::sqrt(l);
+            }
+          double det = 0;
+          if (dim == 2)
+            det = e[0][0] * e[1][1] - e[0][1] * e[1][0];
+          else
+            det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+                  e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                  e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+          j.push_back(lengths > 0 ? det / lengths : 0.);
+        }
+      return j;
+    }
+
+    /// Find @p name among @p sets: exactly, or ignoring case (Abaqus names
+    /// are case-insensitive).
+    template <typename Map>
+    typename Map::const_iterator
+    find_name(const Map &sets, const std::string &name)
+    {
+      auto it = sets.find(name);
+      if (it != sets.end())
+        return it;
+      for (it = sets.begin(); it != sets.end(); ++it)
+        if (lower(it->first) == lower(name))
+          return it;
+      return sets.end();
+    }
+  } // namespace
+
+
+
+  std::string
+  file_line(const std::string &file, const unsigned int line)
+  {
+    return "Mesh file '" + file + "', line " + std::to_string(line);
+  }
+
+
+
+  ImportedMesh
+  import_body(const MeshFileContent &content,
+              const unsigned int     dim,
+              const std::string     &element_set)
+  {
+    ImportedMesh mesh;
+    mesh.file              = content.file;
+    const std::string file = "Mesh file '" + content.file + "'";
+
+    // The body's cells.
+    std::map<long, std::size_t> cell_index;
+    for (std::size_t c = 0; c < content.cells.size(); ++c)
+      cell_index[content.cells[c].id] = c;
+    std::vector<std::size_t> selected;
+    if (element_set.empty())
+      for (std::size_t c = 0; c < content.cells.size(); ++c)
+        selected.push_back(c);
+    else
+      {
+        const auto it = find_name(content.cell_sets, element_set);
+        if (it == content.cell_sets.end())
+          {
+            std::string list;
+            for (const auto &[n, ids] : content.cell_sets)
+              list += (list.empty() ? "" : ", ") + n;
+            throw InputError(file + " has no " + content.set_word + " '" +
+                             element_set + "' of " + std::to_string(dim) +
+                             "D cells; its " + content.set_word +
+                             "s are: " + (list.empty() ? "none" : list) + ".");
+          }
+        for (const auto id : it->second)
+          {
+            const auto c = cell_index.find(id);
+            require(c != cell_index.end(),
+                    file + ": the " + content.set_word + " '" + it->first +
+                      "' names element " + std::to_string(id) +
+                      ", which the file does not define as a cell.");
+            selected.push_back(c->second);
+          }
+      }
+    require(!selected.empty(),
+            file + " has no " + std::to_string(dim) + "D cells" +
+              (element_set.empty() ? "" : " in '" + element_set + "'") +
+              "; glide reads quadrilaterals (2D) and hexahedra (3D).");
+
+    // Every cell must be one glide can read faithfully.
+    for (const auto c : selected)
+      if (!content.cells[c].problem.empty())
+        throw InputError(content.cells[c].problem);
+
+    // Vertices: the corner nodes of the body's cells.
+    std::map<long, unsigned int> vertex_of;
+    std::map<long, std::size_t>  in_body; // cell id -> index in the body
+    for (const auto c : selected)
+      {
+        in_body.emplace(content.cells[c].id, mesh.cells.size());
+        std::vector<unsigned int> cell;
+        for (const auto n : content.cells[c].nodes)
+          {
+            auto [it, inserted] = vertex_of.emplace(n, mesh.vertices.size());
+            if (inserted)
+              {
+                mesh.vertices.push_back(content.nodes.at(n).x);
+                if (dim == 2)
+                  require(content.nodes.at(n).x[2] == 0.,
+                          file_line(content.file, content.nodes.at(n).line) +
+                            ": node " + std::to_string(n) + " has z = " +
+                            std::to_string(content.nodes.at(n).x[2]) +
+                            ", but the scene is 2D (x, y); a 2D mesh lies "
+                            "in the plane z = 0.");
+              }
+            cell.push_back(it->second);
+          }
+        mesh.cells.push_back(cell);
+      }
+
+    // Cells must not be degenerate or inverted.
+    mesh.smallest_edge = std::numeric_limits<double>::max();
+    for (std::size_t k = 0; k < selected.size(); ++k)
+      {
+        const auto                        &cell = content.cells[selected[k]];
+        std::vector<std::array<double, 3>> x;
+        for (const auto v : mesh.cells[k])
+          x.push_back(mesh.vertices[v]);
+        for (const auto &face : cell_faces(dim))
+          for (unsigned int i = 0; i < face.size(); ++i)
+            {
+              double l = 0;
+              for (unsigned int c = 0; c < 3; ++c)
+                l += std::pow(x[face[i]][c] - x[face[(i + 1) % face.size()]][c],
+                              2);
+              mesh.smallest_edge = std::min(mesh.smallest_edge, std::sqrt(l));
+            }
+        const auto        j        = corner_jacobians(x, dim);
+        const double      smallest = *std::min_element(j.begin(), j.end());
+        const double      largest  = *std::max_element(j.begin(), j.end());
+        const std::string label    = file_line(content.file, cell.line) +
+                                  ": element " + std::to_string(cell.id) +
+                                  " (" + cell.type + ")";
+        const std::string area = dim == 2 ? "area" : "volume";
+        if (std::max(std::abs(smallest), std::abs(largest)) <=
+              degenerate_corner ||
+            (std::abs(smallest) <= degenerate_corner && largest > 0) ||
+            (std::abs(largest) <= degenerate_corner && smallest < 0))
+          throw InputError(label + " has zero " + area +
+                           " at a corner (two of its nodes coincide, or its "
+                           "corners lie on one " +
+                           (dim == 2 ? "line" : "plane") +
+                           "); check its node list and the nodes' "
+                           "coordinates.");
+        if (smallest < 0 && largest > 0)
+          throw InputError(
+            label +
+            " is distorted or inverted: it folds over at a corner "
+            "(a bow-tie or non-convex " +
+            std::string(dim == 2 ? "quadrilateral" : "hexahedron") +
+            ", or its nodes in the wrong order); check its node list.");
+        if (largest < 0 && content.clockwise_is_inverted)
+          throw InputError(
+            label + " has a negative " + area + " (it is inside out): " +
+            (dim == 2 ?
+               "its nodes go clockwise; Abaqus numbers the corners of a "
+               "quadrilateral counterclockwise" :
+               "its first face goes clockwise seen from its second; Abaqus "
+               "numbers nodes 1-4 counterclockwise seen from nodes 5-8") +
+            ". Reverse the order of its nodes.");
+      }
+
+    // Faces: each face of a cell, by its sorted vertices; a boundary face
+    // belongs to one cell.
+    struct FaceUse
+    {
+      std::size_t  cell = 0;
+      unsigned int face = 0;
+      unsigned int uses = 0;
+    };
+    std::map<std::vector<unsigned int>, FaceUse> faces;
+    auto key = [](std::vector<unsigned int> v) {
+      std::sort(v.begin(), v.end());
+      return v;
+    };
+    for (std::size_t k = 0; k < mesh.cells.size(); ++k)
+      for (unsigned int f = 0; f < 2 * dim; ++f)
+        {
+          std::vector<unsigned int> v;
+          for (const auto i : cell_faces(dim)[f])
+            v.push_back(mesh.cells[k][i]);
+          auto &use = faces[key(v)];
+          if (use.uses == 0)
+            {
+              use.cell = k;
+              use.face = f;
+            }
+          ++use.uses;
+          require(use.uses <= 2,
+                  file + ": elements " +
+                    std::to_string(content.cells[selected[use.cell]].id) +
+                    " and " + std::to_string(content.cells[selected[k]].id) +
+                    " and a third element share a face; elements must not "
+                    "overlap (is an element defined twice under two ids?).");
+        }
+
+    // Surfaces: faces of the body's boundary.
+    std::map<std::vector<unsigned int>, std::set<std::string>> labels;
+    std::set<std::string>                                      surface_names;
+    for (const auto &[name, surface_faces] : content.surfaces)
+      {
+        unsigned int n   = 0;
+        auto         add = [&](const std::vector<unsigned int> &k,
+                       const MeshFileContent::Face     &f) {
+          const auto it = faces.find(k);
+          require(it != faces.end(),
+                  file_line(content.file, f.line) + ": " + f.what +
+                    " of surface '" + name +
+                    "' is not a face of any cell of the body.");
+          require(it->second.uses == 1,
+                  file_line(content.file, f.line) + ": " + f.what +
+                    " of surface '" + name +
+                    "' lies inside the body, between two elements; glide's "
+                            "surfaces lie on the boundary of a body (split the body "
+                            "into two element sets, or remove the face).");
+          labels[k].insert(name);
+          ++n;
+        };
+        for (const auto &f : surface_faces)
+          {
+            if (f.cell != 0 && !in_body.count(f.cell))
+              continue; // a face of another body
+            if (f.nodes.empty())
+              {
+                // All free faces of a cell.
+                const std::size_t k = in_body.at(f.cell);
+                for (const auto &face : cell_faces(dim))
+                  {
+                    std::vector<unsigned int> v;
+                    for (const auto i : face)
+                      v.push_back(mesh.cells[k][i]);
+                    if (faces.at(key(v)).uses == 1)
+                      {
+                        labels[key(v)].insert(name);
+                        ++n;
+                      }
+                  }
+                continue;
+              }
+            std::vector<unsigned int> v;
+            bool                      all = true;
+            for (const auto node : f.nodes)
+              {
+                const auto it = vertex_of.find(node);
+                if (it == vertex_of.end())
+                  all = false;
+                else
+                  v.push_back(it->second);
+              }
+            if (!all)
+              continue; // a face of another body (Gmsh)
+            add(key(v), f);
+          }
+        if (n > 0)
+          surface_names.insert(name);
+        else if (!element_set.empty())
+          mesh.unavailable[name] = "the surface '" + name + "' of " + file +
+                                   " has no face on the cells of this body "
+                                   "(element set '" +
+                                   element_set + "')";
+        else
+          require(!element_set.empty(),
+                  file + ": the surface '" + name +
+                    "' has no face on the boundary of the mesh's cells.");
+      }
+
+    // Boundary ids: one per combination of surfaces; 0 for faces in none.
+    std::map<std::set<std::string>, types::boundary_id> combination;
+    bool                                                unlabelled = false;
+    for (const auto &[k, use] : faces)
+      if (use.uses == 1)
+        {
+          const auto it = labels.find(k);
+          if (it == labels.end())
+            {
+              unlabelled = true;
+              continue;
+            }
+          auto [c, inserted] =
+            combination.emplace(it->second, combination.size() + 1);
+          if (inserted)
+            mesh.surfaces[c->second] =
+              std::vector<std::string>(it->second.begin(), it->second.end());
+          mesh.faces.emplace_back(k, c->second);
+        }
+    if (unlabelled)
+      mesh.surfaces[0] = {"unnamed"};
+
+    // Node sets: their nodes that are vertices of the body. Mid-side nodes
+    // of second-order elements are not nodes of glide's mesh.
+    for (const auto &[name, nodes] : content.node_sets)
+      {
+        std::vector<std::array<double, 3>> points;
+        unsigned int                       other = 0;
+        for (const auto n : nodes)
+          if (const auto it = vertex_of.find(n); it != vertex_of.end())
+            points.push_back(mesh.vertices[it->second]);
+          else
+            ++other;
+        const std::string set_name =
+          surface_names.count(name) ? name + ".nodes" : name;
+        if (!points.empty())
+          mesh.node_sets[set_name] = points;
+        else
+          mesh.unavailable[set_name] =
+            "the node set '" + name + "' of " + file +
+            " has no corner node of a cell of this body (its " +
+            std::to_string(other) +
+            " nodes are mid-side nodes, nodes of no element or of another "
+            "body)";
+      }
+    return mesh;
+  }
+
+
+
+  ImportedMesh
+  import_mesh_file(const std::string &file,
+                   const unsigned int dim,
+                   const std::string &element_set,
+                   const std::string &part)
+  {
+    std::string extension = std::filesystem::path(file).extension().string();
+    extension             = lower(extension);
+    if (extension == ".msh")
+      {
+        require(part.empty(),
+                "Mesh file '" + file +
+                  "': 'Part' names a part of an Abaqus file; in a Gmsh file "
+                  "pick the body by its physical group with 'Element set'.");
+        return import_body(read_gmsh(file, dim), dim, element_set);
+      }
+    require(extension == ".inp",
+            "Mesh file '" + file +
+              "': glide reads Gmsh '.msh' and Abaqus '.inp' files.");
+    return import_body(read_abaqus(file, dim, part), dim, element_set);
+  }
+
+
+
+  template <int dim>
+  void
+  create_triangulation(
+    const ImportedMesh                                     &mesh,
+    Triangulation<dim>                                     &tria,
+    std::map<types::boundary_id, std::vector<std::string>> &names)
+  {
+    std::vector<Point<dim>> vertices;
+    for (const auto &x : mesh.vertices)
+      {
+        Point<dim> p;
+        for (unsigned int d = 0; d < dim; ++d)
+          p[d] = x[d];
+        vertices.push_back(p);
+      }
+    std::vector<CellData<dim>> cells;
+    for (const auto &c : mesh.cells)
+      {
+        CellData<dim> data(c.size());
+        for (unsigned int v = 0; v < c.size(); ++v)
+          data.vertices[v] = c[v];
+        cells.push_back(data);
+      }
+    SubCellData subcell;
+    for (const auto &[v, id] : mesh.faces)
+      {
+        CellData<dim - 1> face(v.size());
+        for (unsigned int i = 0; i < v.size(); ++i)
+          face.vertices[i] = v[i];
+        face.boundary_id = id;
+        if constexpr (dim == 2)
+          subcell.boundary_lines.push_back(face);
+        else
+          subcell.boundary_quads.push_back(face);
+      }
+    try
+      {
+        // Gmsh cells numbered clockwise are renumbered (Abaqus ones were
+        // refused in import_body()); then the orientation of shared faces
+        // is made consistent, as deal.II's GridIn does.
+        GridTools::invert_all_negative_measure_cells(vertices, cells);
+        GridTools::consistently_order_cells(cells);
+        tria.create_triangulation(vertices, cells, subcell);
+      }
+    catch (const ExceptionBase &e)
+      {
+        std::ostringstream s;
+        e.print_info(s);
+        throw InputError(
+          "Mesh file '" + mesh.file +
+          "': deal.II cannot build a mesh of its cells: " + s.str());
+      }
+    names = mesh.surfaces;
+  }
+
+  template void
+  create_triangulation<2>(
+    const ImportedMesh &,
+    Triangulation<2> &,
+    std::map<types::boundary_id, std::vector<std::string>> &);
+  template void
+  create_triangulation<3>(
+    const ImportedMesh &,
+    Triangulation<3> &,
+    std::map<types::boundary_id, std::vector<std::string>> &);
+} // namespace glide

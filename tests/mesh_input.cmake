@@ -1,0 +1,94 @@
+# Mesh files (issue 13, P1.3, P4.1): glide's own Gmsh and Abaqus readers.
+# Included from tests/CMakeLists.txt (uses glide_error_test and GLIDE_PYTHON).
+#
+# Bad input: every mistake class has at least two tests. Each expects exit
+# status 1, a message that names the file and the line (or element) and
+# says what to do, and nothing written (check_error.py). The scene is
+# tests/scenes/mesh-import/one-body.prm with the mesh file set per test;
+# the files are in tests/data/mesh/ (each bad_* file has one mistake).
+set(MESH_DATA ${CMAKE_CURRENT_SOURCE_DIR}/data/mesh)
+set(ONE_BODY ${SCENES}/mesh-import/one-body.prm)
+set(IN_3D --set "Dimension=3" --set "Analysis type=3d")
+function(glide_mesh_error_test name file pattern)
+  glide_error_test(mesh.${name} "${file}', line ${pattern}" ${ONE_BODY}
+    --set "Body part/Mesh file=${MESH_DATA}/${file}" ${ARGN})
+endfunction()
+
+# Element types glide does not read: refused with the type and what to do.
+glide_mesh_error_test(gmsh_triangle tri41.msh "63: element 8 \\(3-node triangle, Gmsh type 2\\): .*recombine the triangles")
+glide_mesh_error_test(gmsh_tetrahedron tet22.msh "[0-9]+: element [0-9]+ \\(4-node tetrahedron, Gmsh type 4\\): glide meshes 3D bodies with hexahedra" ${IN_3D})
+glide_mesh_error_test(gmsh_second_order quad9.msh "[0-9]+: element [0-9]+ \\(.*second-order.*'Mesh.ElementOrder = 1'")
+glide_mesh_error_test(gmsh_3d_in_2d box41.msh "[0-9]+: element [0-9]+ \\(8-node hexahedron, Gmsh type 5\\): the scene has 'Dimension = 2'")
+glide_mesh_error_test(abaqus_triangle bad_triangle.inp "11: element 1 has type CPE3, a triangle; .*Element Shape = Quad")
+glide_mesh_error_test(abaqus_tetrahedron bad_tetrahedron.inp "15: element 1 has type C3D10, a tetrahedron; .*Element Shape = Hex" ${IN_3D})
+glide_mesh_error_test(abaqus_shell bad_shell.inp "11: element 1 has type S4R, not a continuum element")
+glide_mesh_error_test(abaqus_3d_in_2d cube_c3d8.inp "11: element 1 has type C3D8R, a 3D element, but the scene has 'Dimension = 2'")
+# Second-order elements: read with their corner nodes only if straight.
+glide_mesh_error_test(abaqus_curved_cpe8 bad_curved_cpe8.inp "17: element 2 \\(type CPE8\\) has a curved or distorted edge: its mid-side node 17 lies 0.1 away")
+glide_mesh_error_test(abaqus_curved_c3d20 bad_curved_c3d20.inp "24: element 1 \\(type C3D20R\\) has a curved or distorted edge: its mid-side node 9" ${IN_3D})
+# An element that references an undefined node.
+glide_mesh_error_test(gmsh_undefined_node bad_undefined_node.msh "22: element 6 \\(4-node quadrilateral, Gmsh type 3\\) references node 7, which the file does not define")
+glide_mesh_error_test(abaqus_undefined_node bad_undefined_node.inp "12: element 2 \\(type CPE4\\) references node 9, which the file does not define")
+# A node or element id defined twice.
+glide_mesh_error_test(gmsh_duplicate_node bad_duplicate_node.msh "15: node 2 is defined a second time \\(first at line 12\\)")
+glide_mesh_error_test(abaqus_duplicate_node bad_duplicate_node.inp "10: node 5 is defined a second time \\(first at line 8\\)")
+glide_mesh_error_test(gmsh_duplicate_element bad_duplicate_element.msh "22: element 5 is defined a second time \\(first at line 20\\)")
+glide_mesh_error_test(abaqus_duplicate_element bad_duplicate_element.inp "12: element 1 is defined a second time \\(first at line 11\\)")
+# Cells of zero area, folded (bow-tie) or inside out.
+glide_mesh_error_test(gmsh_zero_area bad_zero_area.msh "21: element 6 \\(4-node quadrilateral\\) has zero area")
+glide_mesh_error_test(abaqus_zero_area bad_zero_area.inp "12: element 2 \\(CPE4\\) has zero area")
+glide_mesh_error_test(gmsh_bow_tie bad_bow_tie.msh "21: element 6 \\(4-node quadrilateral\\) is distorted or inverted")
+glide_mesh_error_test(abaqus_bow_tie bad_bow_tie.inp "12: element 2 \\(CPE4\\) is distorted or inverted")
+glide_mesh_error_test(abaqus_clockwise bad_clockwise.inp "12: element 2 \\(CPE4\\) has a negative area \\(it is inside out\\): its nodes go clockwise")
+# Syntax: the line and what is wrong on it (never deal.II's "conversion to
+# UCD unsuccessful").
+glide_mesh_error_test(gmsh_syntax bad_syntax.msh "21: cannot read 'x' as a node id")
+glide_mesh_error_test(gmsh_truncated bad_truncated.msh "22: the \\$Elements section ends here, but its counts announce more entries")
+glide_mesh_error_test(gmsh_version bad_version.msh "2: Gmsh format 4 0 8; glide reads the ASCII formats 2.2 and 4.1")
+glide_mesh_error_test(abaqus_bad_number bad_number.inp "10: cannot read 'O.5' as a coordinate")
+glide_mesh_error_test(abaqus_node_count bad_node_count.inp "11: element 1 of type CPE4 has 3 nodes; CPE4 has 4")
+glide_mesh_error_test(abaqus_data_line bad_data_line.inp "2: a data line outside any keyword")
+glide_mesh_error_test(abaqus_missing_star bad_missing_star.inp "8: 'ELEMENT, TYPE=CPE4' is not a node line \\(id, x, y\\); a keyword line starts with '\\*'")
+glide_mesh_error_test(abaqus_ngen bad_ngen.inp "10: \\*NGEN is not read by glide")
+# Sets and surfaces that name what the file does not have, or faces glide
+# cannot use as a surface.
+glide_mesh_error_test(abaqus_unknown_set bad_unknown_set.inp "13: 'LID' is neither a node id nor the name of a \\*NSET defined above")
+glide_mesh_error_test(abaqus_face_id bad_face_id.inp "13: face identifier 'S5' of surface 'TOP': glide reads the faces S1 to S4")
+glide_mesh_error_test(abaqus_surface_element bad_surface_element.inp "13: surface 'TOP' names element 7, which the file does not define")
+glide_mesh_error_test(abaqus_surface_type bad_surface_type.inp "12: \\*SURFACE, TYPE=SEGMENTS is not read by glide")
+glide_mesh_error_test(abaqus_interior_surface bad_interior_surface.inp "14: face S2 of element 1 of surface 'MIDDLE' lies inside the body")
+glide_mesh_error_test(gmsh_interior_surface bad_interior_surface.msh "22: element 7 \\(2-node line, Gmsh type 1\\) of surface 'bottom' lies inside the body")
+# Picking a body out of a file: element sets and parts that do not exist.
+glide_error_test(mesh.abaqus_unknown_element_set "Body 'part': Mesh file '.*two_bodies.inp' has no element set 'BODY3' of 2D cells; its element sets are: .*BODY1.*Body2"
+  ${ONE_BODY} --set "Body part/Mesh file=${MESH_DATA}/two_bodies.inp" --set "Body part/Element set=BODY3")
+glide_error_test(mesh.gmsh_unknown_physical_group "Body 'part': Mesh file '.*plate41.msh' has no physical group 'nowhere' of 2D cells; its physical groups are: plate"
+  ${ONE_BODY} --set "Body part/Mesh file=${MESH_DATA}/plate41.msh" --set "Body part/Element set=nowhere")
+glide_error_test(mesh.abaqus_parts_ambiguous "parts.inp' has several parts or instances: Block-1 \\(part Block\\), Base-1 \\(part Base\\). Name the one this body is with 'Part'"
+  ${ONE_BODY} --set "Body part/Mesh file=${MESH_DATA}/parts.inp")
+glide_error_test(mesh.abaqus_unknown_part "parts.inp': 'Part = Lid' names no part or instance of the file. The file has: Block-1"
+  ${ONE_BODY} --set "Body part/Mesh file=${MESH_DATA}/parts.inp" --set "Body part/Part=Lid")
+glide_error_test(mesh.element_set_needs_file "Body block/Element set' and 'Part' pick a body out of a mesh file; they need 'Mesh = file'"
+  ${SCENES}/block.prm --set "Body block/Element set=BODY1")
+# A node set of the file that is not on the body the scene names it for.
+glide_error_test(mesh.node_set_of_other_body "Boundary condition hold/Surface' = 'lower.LOADED': the node set 'LOADED' of Mesh file '.*two_bodies.inp' has no corner node of a cell of this body"
+  ${SCENES}/mesh-import/block-on-block-inp.prm --set "Boundary condition hold/Surface=lower.LOADED")
+# A surface of the file that lies on the other body.
+glide_error_test(mesh.surface_of_other_body "Contact pair interface/Master' = 'lower.SLAVE': the surface 'SLAVE' of Mesh file '.*two_bodies.inp' has no face on the cells of this body \\(element set 'BODY1'\\)"
+  ${SCENES}/mesh-import/block-on-block-inp.prm --set "Contact pair interface/Master=lower.SLAVE")
+
+# Node sets of points separated by ';' (issue 13): the message names the
+# point that misses the mesh, (0, 6), and the distance to its nearest
+# vertex, (0, 5); a point that is not a point is named as written.
+glide_error_test(node_set_point_misses "Node set 'left': no mesh vertex within 1e-08 of its point 2 of 2 \\(0, 6\\); the nearest vertex is 1 away"
+  ${SCENES}/mesh-import/node-set-point-misses.prm)
+glide_error_test(node_set_point_syntax "Node set left/Points': cannot read '0, 5, x' as a point"
+  ${SCENES}/mesh-import/node-set-point-syntax.prm)
+
+# Positive tests: a two-body contact problem from one Abaqus file against
+# the same geometry from built-in meshes; single bodies from Gmsh 4.1,
+# Abaqus second-order, part/instance and 3D files with balanced reactions;
+# a node set of points separated by ';'.
+foreach(case abaqus_two_bodies_contact gmsh_and_abaqus_bodies_balance node_set_points)
+  add_test(NAME scene.mesh_import_${case}
+    COMMAND ${GLIDE_PYTHON} ${SCENES}/mesh_import_tests.py --glide $<TARGET_FILE:glide> --case ${case})
+endforeach()

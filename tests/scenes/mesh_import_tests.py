@@ -1,0 +1,122 @@
+#!/usr/bin/env python3
+"""Scene tests of mesh import (issue 13, P1.3): glide run on bodies read from
+Abaqus and Gmsh files, statistics checked. Each case states what it checks
+and why the expected answer is right. Uses the helpers of scene_tests.py.
+Usage: mesh_import_tests.py --glide PATH --case NAME
+"""
+import argparse
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import scene_tests as st  # noqa: E402
+from scene_tests import check, close  # noqa: E402
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SCENES = os.path.join(HERE, "mesh-import")
+DATA = os.path.join(os.path.dirname(HERE), "data", "mesh")
+
+
+def case_abaqus_two_bodies_contact():
+    """A two-body contact problem in one Abaqus file written for another
+    solver (tests/data/mesh/two_bodies.inp: both bodies in one file, picked
+    by *ELSET; element ids 641-648 and node ids 1001-1015 for the second;
+    *NSET FIXED and LOADED for the supports and the push; element-based
+    *SURFACE SLAVE and MASTER; a deformable master). The file has exactly
+    the nodes and cells of block-on-block-builtin.prm (built-in blocks), so
+    the reactions and the contact force must be the same to solver
+    tolerance; in each run the support balances the push and the contact
+    force (equilibrium of each body). The node-based *SURFACE SLAVE_NODES
+    (the same 5 nodes, each with contact area 1) constrains the same nodes,
+    so it carries the same force. The problem is linear and the interface
+    is closed everywhere from the start, so the active set is right in the
+    first iteration: one Newton step and one to confirm, at most 4 with
+    margin."""
+    inp, log, out = st.run(os.path.join(SCENES, "block-on-block-inp.prm"), "Output/Write VTU=false")
+    ref, _, _ = st.run(os.path.join(SCENES, "block-on-block-builtin.prm"), "Output/Write VTU=false")
+    check("lower.MASTER" in log and "upper.SLAVE" in log, "the log lists the surfaces of the file by name")
+    check("upper.LOADED" in log and "lower.FIXED" in log, "the log lists the node sets of the file")
+    check("5 slave nodes" in log, "5 slave nodes on SLAVE")
+    check(len(inp) == 2 and len(ref) == 2, "both runs finish their 2 steps")
+    for a, b in zip(inp, ref):
+        t = a["load_factor"]
+        check(a["kinsol_iterations"] <= 4, f"{int(a['kinsol_iterations'])} iterations at t={t}")
+        check(a["reaction_hold_y"] > 0, f"the support pushes up at t={t}")
+        close(a["reaction_hold_y"], b["reaction_hold_y"], 1e-8, f"support reaction as with built-in meshes at t={t}")
+        close(a["contact_interface_force_y"], b["contact_interface_force_y"], 1e-8,
+              f"contact force as with built-in meshes at t={t}")
+        close(a["reaction_hold_y"], -a["reaction_push_y"], 1e-9, f"support balances the push at t={t}")
+        close(a["contact_interface_force_y"], a["reaction_hold_y"], 1e-9, f"contact force = support reaction at t={t}")
+        check(a["contact_interface_active"] == b["contact_interface_active"], f"same active set at t={t}")
+    nodes, log, _ = st.run(os.path.join(SCENES, "block-on-block-inp.prm"), "Output/Write VTU=false",
+                           "Contact pair interface/Slave=upper.SLAVE_NODES", name="node-based")
+    check("5 slave nodes" in log, "5 slave nodes on the node-based surface SLAVE_NODES (none of the lower body)")
+    for a, b in zip(nodes, inp):
+        close(a["reaction_hold_y"], b["reaction_hold_y"], 1e-8,
+              f"node-based slave surface: same reaction at t={a['load_factor']}")
+
+
+def one_body(mesh, *sets, name):
+    return st.run(os.path.join(SCENES, "one-body.prm"), "Output/Write VTU=false",
+                  f"Body part/Mesh file={os.path.join(DATA, mesh)}", *sets, name=name)
+
+
+def case_gmsh_and_abaqus_bodies_balance():
+    """Single bodies from the other kinds of file, each held on a named
+    surface and loaded on another named surface or node set; the support
+    reaction must balance the load exactly (global equilibrium):
+    - plate41.msh (written by Gmsh 4 in format 4.1): the physical point
+      'corner' is a node set carrying a force (0, -3): R = (0, 3);
+    - straight_cpe8.inp (CPE8R elements with straight edges, read with their
+      corners; Element degree = 2): traction (0, -2) on TOP, length 2, held
+      on the rest of the boundary: R = (0, 4);
+    - parts.inp, instance Block-1 (a *PART placed by *INSTANCE with a
+      translation): held on the assembly-level surface Bottom, traction
+      (1, -1) on the part-level surface Top of length 1: R = (-1, 1);
+    - box41.msh (3D, 2 hexahedra, Gmsh 4.1): held on 'bottom', pressure 1 on
+      'top' (area 2): R_z = 2."""
+    rows, _, _ = one_body("plate41.msh", "Boundary conditions=hold, load", "Boundary condition hold/Surface=part.bottom",
+                          "Boundary condition load/Surface=part.corner", "Boundary condition load/Type=force",
+                          "Boundary condition load/Function=0; -3*t", name="plate41")
+    close(rows[-1]["reaction_hold_y"], 3., 1e-9, "plate41.msh: the support carries the force on the node set 'corner'")
+    close(abs(rows[-1]["reaction_hold_x"]) + 1, 1., 1e-9, "plate41.msh: no horizontal reaction")
+    rows, _, _ = one_body("straight_cpe8.inp", "Discretization/Element degree=2", "Boundary conditions=hold, load",
+                          "Boundary condition hold/Surface=part.unnamed", "Boundary condition load/Surface=part.TOP",
+                          "Boundary condition load/Type=traction", "Boundary condition load/Function=0; -2*t",
+                          name="cpe8")
+    close(rows[-1]["reaction_hold_y"], 4., 1e-9, "straight_cpe8.inp: the support carries the traction on TOP")
+    rows, _, _ = one_body("parts.inp", "Body part/Part=Block-1", "Boundary conditions=hold, load",
+                          "Boundary condition hold/Surface=part.Bottom", "Boundary condition load/Surface=part.Top",
+                          "Boundary condition load/Type=traction", "Boundary condition load/Function=t; -t",
+                          name="parts")
+    close(rows[-1]["reaction_hold_x"], -1., 1e-9, "parts.inp: x reaction of the instance Block-1")
+    close(rows[-1]["reaction_hold_y"], 1., 1e-9, "parts.inp: y reaction of the instance Block-1")
+    rows, _, _ = one_body("box41.msh", "Dimension=3", "Analysis type=3d", "Boundary conditions=hold, load",
+                          "Boundary condition hold/Surface=part.bottom", "Boundary condition load/Surface=part.top",
+                          "Boundary condition load/Type=pressure", "Boundary condition load/Function=t",
+                          name="box41")
+    close(rows[-1]["reaction_hold_z"], 2., 1e-9, "box41.msh: the support carries the pressure on 'top'")
+
+
+def case_node_set_points():
+    """Issue 13: 'set Points = 0, 10;0, 5' (points separated by ';' without
+    a blank) is a node set of two vertices of the 10 x 10 block; a force
+    (1, 0) on each gives the support reaction R_x = -2 (global
+    equilibrium)."""
+    rows, _, _ = st.run(os.path.join(SCENES, "node-set-points.prm"), "Output/Write VTU=false")
+    close(rows[-1]["reaction_hold_x"], -2., 1e-9, "the support balances the force on both points")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--glide", required=True)
+    ap.add_argument("--case", required=True)
+    st.ARGS = ap.parse_args()
+    st.ARGS.glide = os.path.abspath(st.ARGS.glide)
+    globals()["case_" + st.ARGS.case]()
+    print("PASSED" if not st.failures else f"FAILED: {len(st.failures)} check(s)")
+    sys.exit(1 if st.failures else 0)
+
+
+if __name__ == "__main__":
+    main()
