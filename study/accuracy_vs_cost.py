@@ -394,6 +394,59 @@ def kept_section(report, header):
     return [header, "", "Not measured: run with `--ironing`.", ""]
 
 
+def plot_lines(doc, tables, elastic):
+    """Plots of the relative L2 pressure error against time and memory for
+    the rigid-flat tables (degree -> rows) and the elastic ones ((degree,
+    f) -> (rows, ...)); returns the report lines that embed them."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        return ["(Plots skipped: install python3-matplotlib.)", ""]
+    for what, key, label in (("time", "time_s", "wall time [s]"), ("memory", "memory_mib", "peak memory [MiB]")):
+        fig, ax = plt.subplots(figsize=(5, 4))
+        for degree, rows in tables.items():
+            ax.loglog([float(r[key]) for r in rows], [float(r["l2_rel"]) for r in rows], "o-",
+                      label=f"NTS, rigid flat, degree {degree}")
+        for (degree, f), (rows, _) in elastic.items():
+            if rows:
+                ax.loglog([float(r[key]) for r in rows], [float(r["l2_rel"]) for r in rows], "s--",
+                          label=f"NTS, elastic master f = {f}, degree {degree}")
+        ax.set_xlabel(label)
+        ax.set_ylabel("relative L2 error of the contact pressure")
+        ax.set_title("Hertz line contact")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+        fig.tight_layout()
+        fig.savefig(os.path.join(doc, f"accuracy-vs-cost-hertz-{what}.png"), dpi=100)
+    return ["![error against time](accuracy-vs-cost-hertz-time.png)",
+            "![error against memory](accuracy-vs-cost-hertz-memory.png)", ""]
+
+
+def tables_of_report(text):
+    """The Hertz tables of an existing report: rigid flat (degree -> rows)
+    and elastic ((degree, f) -> (rows, None)), rows with the keys of the
+    study's CSV tables that the plots use."""
+    tables, elastic, section, key = {}, {}, None, None
+    for line in text.split("\n"):
+        if line.startswith("## "):
+            section = ("rigid" if line.startswith("## Hertz line contact, node to surface, rigid flat") else
+                       "elastic" if line.startswith("## Hertz between elastic bodies over five meshes") else None)
+            key = None
+        elif line.startswith("### Degree") and section:
+            m = re.match(r"### Degree (\d)(?:, f = ([0-9.]+))?", line)
+            key = int(m.group(1)) if section == "rigid" else (int(m.group(1)), m.group(2))
+        elif key is not None and line.startswith("| ") and not line.startswith("| h |"):
+            c = [x.strip() for x in line.strip("|").split("|")]
+            row = {"h": c[0], "l2_rel": c[4], "time_s": c[6], "memory_mib": c[7]}
+            if section == "rigid":
+                tables.setdefault(key, []).append(row)
+            else:
+                elastic.setdefault(key, ([], None))[0].append(row)
+    return tables, elastic
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--glide", required=True)
@@ -412,8 +465,28 @@ def main():
     ap.add_argument("--solve-cost-only", action="store_true",
                     help="measure only the contact-solve-against-linear-solve target and replace its "
                          "line in the existing report")
+    ap.add_argument("--plots-only", action="store_true",
+                    help="draw the plots from the tables of the existing report and embed them "
+                         "(needs python3-matplotlib; nothing is run)")
     a = ap.parse_args()
     report = os.path.join(a.doc, "accuracy-vs-cost.md")
+    if a.plots_only:
+        with open(report) as f:
+            text = f.read()
+        tables, elastic = tables_of_report(text)
+        new = plot_lines(a.doc, tables, elastic)
+        old = [x for x in text.split("\n")]
+        at = next((i for i, x in enumerate(old) if x.startswith("(Plots skipped") or
+                   x.startswith("![error against time]")), None)
+        if at is None:
+            raise SystemExit("no plot line in the report")
+        end = at + 1
+        while end < len(old) and old[end].startswith("!["):
+            end += 1
+        with open(report, "w") as f:
+            f.write("\n".join(old[:at] + new[:-1] + old[end:]))
+        print("\n".join(new))
+        return
     if a.solve_cost_only:
         out = tempfile.mkdtemp(prefix="glide-cost-")
         with open(report) as f:
@@ -531,30 +604,7 @@ def main():
                          f"{float(r['mean_its']):.2f} | {float(r['time_s']):.2f} | {float(r['memory_mib']):.0f} |")
         lines.append("")
 
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        for what, key, label in (("time", "time_s", "wall time [s]"), ("memory", "memory_mib", "peak memory [MiB]")):
-            fig, ax = plt.subplots(figsize=(5, 4))
-            for degree, rows in tables.items():
-                ax.loglog([float(r[key]) for r in rows], [float(r["l2_rel"]) for r in rows], "o-",
-                          label=f"NTS, rigid flat, degree {degree}")
-            for (degree, f), (rows, _) in elastic.items():
-                if rows:
-                    ax.loglog([float(r[key]) for r in rows], [float(r["l2_rel"]) for r in rows], "s--",
-                              label=f"NTS, elastic master f = {f}, degree {degree}")
-            ax.set_xlabel(label)
-            ax.set_ylabel("relative L2 error of the contact pressure")
-            ax.set_title("Hertz line contact")
-            ax.grid(True, which="both", alpha=0.3)
-            ax.legend()
-            fig.tight_layout()
-            fig.savefig(os.path.join(a.doc, f"accuracy-vs-cost-hertz-{what}.png"), dpi=100)
-        lines += ["![error against time](accuracy-vs-cost-hertz-time.png)",
-                  "![error against memory](accuracy-vs-cost-hertz-memory.png)", ""]
-    except ImportError:
-        lines += ["(Plots skipped: install python3-matplotlib.)", ""]
+    lines += plot_lines(a.doc, tables, elastic)
 
     lines += ["## Hertz between elastic bodies over five meshes (deformable master)", "",
               "`parameters/hertz-2d-elastic.prm` refined together (cylinder levels as in the rigid "
