@@ -54,14 +54,18 @@ namespace glide
     prm.declare_entry(
       "Formulation",
       "node to surface",
-      Patterns::Selection("node to surface|surface to surface"),
+      Patterns::Selection("node to surface|surface to surface|mortar"),
       "Contact discretization: node to surface (one constraint per "
       "slave node). surface to surface (small sliding only): one "
       "constraint per slave node that averages over the "
       "slave nodes around it, anchored where that region, projected along "
       "the slave normal, lands on the master (R9); falls back to node to "
       "surface per constraint where that is not possible, and the log "
-      "counts those.");
+      "counts those. mortar (finite sliding, 2D so far, master surface of "
+      "a body): the gap is enforced in a weighted-integral sense over the "
+      "slave surface with dual multipliers (R14, doc/theory/mortar.md); "
+      "passes the contact patch test; integrates over the master facets as "
+      "meshed, so 'Smoothing fraction' does not apply.");
     prm.declare_entry(
       "Sliding",
       "finite",
@@ -246,6 +250,20 @@ namespace glide
               "': 'Formulation = surface to surface' is available with "
               "'Sliding = small' only so far; use node to surface for "
               "finite sliding.");
+    require(formulation != "mortar" || sliding == "finite",
+            "Contact pair '" + name +
+              "': 'Formulation = mortar' is a finite-sliding formulation; "
+              "set 'Sliding = finite' (or use small-sliding node to surface "
+              "or surface to surface).");
+    require(formulation != "mortar" || master_type == MasterType::surface,
+            "Contact pair '" + name + "': 'Formulation = mortar' needs a "
+              "master surface of a body (deformable or meshed rigid), not "
+              "the analytical '" + master +
+              "'; use 'Formulation = node to surface' with it.");
+    require(formulation != "mortar" || dim == 2,
+            "Contact pair '" + name +
+              "': 'Formulation = mortar' is available in 2D (plane strain, "
+              "axisymmetric) so far; use 'node to surface' in 3D.");
     prm.enter_subsection("Rigid master");
     point        = read_point(prm, "Point", dim, path + "/Rigid master");
     normal       = read_point(prm, "Normal", dim, path + "/Rigid master");

@@ -1,4 +1,5 @@
 #include <glide/contact/formulation.h>
+#include <glide/contact/mortar.h>
 #include <glide/contact/node_to_surface.h>
 #include <glide/contact/small_sliding.h>
 #include <glide/contact/small_sliding_formulation.h>
@@ -151,6 +152,20 @@ namespace glide
         std::move(master),
         std::move(surface),
         p.formulation == "surface to surface");
+    if (name == "mortar, finite sliding")
+      {
+        require(dim == 2,
+                "Parameter '" + context.path +
+                  "/Formulation' = 'mortar': mortar contact is available in "
+                  "2D (plane strain, axisymmetric) so far; use 'node to "
+                  "surface' in 3D.");
+        require(surface != nullptr,
+                "Parameter '" + context.path +
+                  "/Formulation' = 'mortar' needs a master surface of a body "
+                  "(deformable or meshed rigid), not the analytical '" +
+                  p.master + "'; use 'node to surface' with it.");
+        return std::make_unique<Mortar<dim>>(context, std::move(surface));
+      }
     throw InputError("Parameter '" + context.path + "/Formulation' = '" +
                      p.formulation + "' with 'Sliding' = '" + p.sliding +
                      "': glide has no such formulation; surface to surface "

@@ -1,0 +1,770 @@
+#include <glide/contact/facet_basis.h>
+#include <glide/contact/mortar.h>
+#include <glide/contact/small_sliding.h>
+#include <glide/scene/input_error.h>
+
+#include <deal.II/base/quadrature_lib.h>
+
+#include <Sacado.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace glide
+{
+  using namespace dealii;
+
+  namespace
+  {
+    using Fad = Sacado::Fad::DFad<double>;
+
+    double
+    plain(const double x)
+    {
+      return x;
+    }
+    double
+    plain(const Fad &x)
+    {
+      return x.val();
+    }
+
+    template <typename T>
+    T
+    cross(const std::array<T, 2> &a, const std::array<T, 2> &b)
+    {
+      return a[0] * b[1] - a[1] * b[0];
+    }
+
+    /// Unit vector along @p a (a must not vanish).
+    template <typename T, std::size_t n>
+    std::array<T, n>
+    unit(const std::array<T, n> &a)
+    {
+      using std::sqrt;
+      T s = a[0] * a[0];
+      for (std::size_t i = 1; i < n; ++i)
+        s += a[i] * a[i];
+      const T l = sqrt(s);
+      auto    u = a;
+      for (auto &x : u)
+        x /= l;
+      return u;
+    }
+
+    /**
+     * Root of a scalar equation R(s) = 0 near @p start: Newton in double
+     * to convergence, then one Newton step in T from the converged point,
+     * which carries the exact first derivatives of the root (implicit
+     * function theorem) when T is a Fad. @p f(s, R, dR) evaluates R and
+     * R' at s for s of type double or T. Returns false if Newton does not
+     * converge.
+     */
+    template <typename T, typename F>
+    bool
+    solve_1d(const F &f, const double start, T &root)
+    {
+      double s = start;
+      for (unsigned int it = 0; it < 30; ++it)
+        {
+          double R, dR;
+          f(s, R, dR);
+          if (!(std::abs(dR) > 0.) || !std::isfinite(R))
+            return false;
+          const double step = R / dR;
+          s -= step;
+          if (!std::isfinite(s) || std::abs(s) > 1e3)
+            return false;
+          if (std::abs(step) < 1e-14 * (1. + std::abs(s)))
+            {
+              if constexpr (std::is_same_v<T, double>)
+                root = s;
+              else
+                {
+                  T sT = s, RT, dRT;
+                  f(sT, RT, dRT);
+                  root = sT - RT / dRT;
+                }
+              return true;
+            }
+        }
+      return false;
+    }
+
+    /// Position and tangent of a 2D facet of degree @p p with node
+    /// positions @p X at parameter @p xi (and the shape values @p N).
+    template <typename T, typename S>
+    void
+    line(const unsigned int                    p,
+         const std::vector<std::array<T, 2>> &X,
+         const S                              &xi,
+         std::array<S, 3>                     &N,
+         std::array<S, 2>                     &x,
+         std::array<S, 2>                     &a)
+    {
+      std::array<S, 3> dN;
+      lagrange(p, xi, N.data(), dN.data());
+      for (unsigned int d = 0; d < 2; ++d)
+        {
+          x[d] = 0.;
+          a[d] = 0.;
+          for (unsigned int k = 0; k <= p; ++k)
+            {
+              x[d] += N[k] * X[k][d];
+              a[d] += dN[k] * X[k][d];
+            }
+        }
+    }
+
+    /// Inverse of a small square matrix (Gauss-Jordan with pivoting on the
+    /// values); false if singular.
+    template <typename T>
+    bool
+    invert(std::vector<std::vector<T>> &A)
+    {
+      const unsigned int          n = A.size();
+      std::vector<std::vector<T>> B(n, std::vector<T>(n, T(0.)));
+      for (unsigned int i = 0; i < n; ++i)
+        B[i][i] = 1.;
+      for (unsigned int c = 0; c < n; ++c)
+        {
+          unsigned int r = c;
+          for (unsigned int i = c + 1; i < n; ++i)
+            if (std::abs(plain(A[i][c])) > std::abs(plain(A[r][c])))
+              r = i;
+          if (!(std::abs(plain(A[r][c])) > 0.))
+            return false;
+          std::swap(A[r], A[c]);
+          std::swap(B[r], B[c]);
+          const T pivot = A[c][c];
+          for (unsigned int j = 0; j < n; ++j)
+            {
+              A[c][j] /= pivot;
+              B[c][j] /= pivot;
+            }
+          for (unsigned int i = 0; i < n; ++i)
+            if (i != c)
+              {
+                const T factor = A[i][c];
+                for (unsigned int j = 0; j < n; ++j)
+                  {
+                    A[i][j] -= factor * A[c][j];
+                    B[i][j] -= factor * B[c][j];
+                  }
+              }
+        }
+      A = B;
+      return true;
+    }
+
+    /// Index of @p k in @p list (which holds it).
+    unsigned int
+    index_of(const std::vector<unsigned int> &list, const unsigned int k)
+    {
+      return std::find(list.begin(), list.end(), k) - list.begin();
+    }
+  } // namespace
+
+  template <int dim>
+  Mortar<dim>::Mortar(const PairContext<dim>             &context,
+                      std::unique_ptr<MasterSurface<dim>> surface)
+    : Formulation<dim>(context, nullptr, std::move(surface))
+  {
+    const auto &p = context.parameters;
+    for (const auto &set : context.scene.node_sets)
+      require(set.name != p.slave,
+              "Parameter '" + context.path + "/Slave' = '" + p.slave +
+                "' is a node set; mortar contact integrates over the slave "
+                "surface and needs a surface <body>.<surface> (or use "
+                "'Formulation = node to surface').");
+    std::set<types::boundary_id> ids;
+    for (const auto &name : Utilities::split_string_list(p.slave, ','))
+      for (const auto id :
+           context.elasticity.get_mesh().surface(name, context.path + "/Slave"))
+        ids.insert(id);
+    // The slave facets, extracted (and oriented outwards) as a master
+    // surface is; no smoothing.
+    slave = std::make_unique<MasterSurface<dim>>(context.elasticity,
+                                                 ids,
+                                                 0.,
+                                                 context.path);
+  }
+
+  template <int dim>
+  void
+  Mortar<dim>::setup(const std::vector<SlaveNode<dim>> &nodes)
+  {
+    Formulation<dim>::setup(nodes);
+    const auto &surface_nodes = slave->get_nodes();
+    std::map<types::global_dof_index, unsigned int> by_dof;
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      by_dof[nodes[i].dofs[0]] = i;
+    node_of.assign(surface_nodes.size(), numbers::invalid_unsigned_int);
+    surface_node.assign(nodes.size(), numbers::invalid_unsigned_int);
+    for (unsigned int k = 0; k < surface_nodes.size(); ++k)
+      {
+        const auto it = by_dof.find(surface_nodes[k].dofs[0]);
+        if (it != by_dof.end())
+          {
+            node_of[k]                = it->second;
+            surface_node[it->second] = k;
+          }
+      }
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      AssertThrow(surface_node[i] != numbers::invalid_unsigned_int,
+                  ExcInternalError());
+    facets_at.assign(surface_nodes.size(), {});
+    const auto &facets = slave->get_facets();
+    for (unsigned int f = 0; f < facets.size(); ++f)
+      for (const auto k : facets[f].nodes)
+        facets_at[k].push_back(f);
+    radius = std::max(slave->facet_size(), this->surface->facet_size());
+    coupled.assign(nodes.size(), {});
+    previous_position.clear();
+    for (const auto &node : nodes)
+      previous_position.push_back(node.X);
+    previous_point = previous_position;
+    previous_found.assign(nodes.size(), false);
+    slave_x.clear();
+  }
+
+  template <int dim>
+  void
+  Mortar<dim>::move(const VectorType &U) const
+  {
+    const auto start = std::chrono::steady_clock::now();
+    this->surface->set_displacement(U, false);
+    slave->set_displacement(U, false);
+    slave_x = slave->get_positions();
+    if (tree_version != this->surface->version())
+      {
+        // The master facets' bounding boxes at the current positions.
+        const auto        &x = this->surface->get_positions();
+        std::vector<Leaf>  boxes;
+        const auto        &facets = this->surface->get_facets();
+        for (unsigned int f = 0; f < facets.size(); ++f)
+          {
+            Point<dim> lo = x[facets[f].nodes[0]], hi = lo;
+            for (const auto k : facets[f].nodes)
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  lo[d] = std::min(lo[d], x[k][d]);
+                  hi[d] = std::max(hi[d], x[k][d]);
+                }
+            boxes.emplace_back(BoundingBox<dim>(std::make_pair(lo, hi)), f);
+          }
+        tree         = pack_rtree(boxes);
+        tree_version = this->surface->version();
+      }
+    this->searching += std::chrono::steady_clock::now() - start;
+  }
+
+  template <int dim>
+  std::vector<unsigned int>
+  Mortar<dim>::candidates(const unsigned int facet, const double r) const
+  {
+    namespace bgi = boost::geometry::index;
+    const auto &nodes = slave->get_facets()[facet].nodes;
+    Point<dim>  lo = slave_x[nodes[0]], hi = lo;
+    for (const auto k : nodes)
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          lo[d] = std::min(lo[d], slave_x[k][d] - r);
+          hi[d] = std::max(hi[d], slave_x[k][d] + r);
+        }
+    std::vector<Leaf> found;
+    tree.query(bgi::intersects(BoundingBox<dim>(std::make_pair(lo, hi))),
+               std::back_inserter(found));
+    std::vector<unsigned int> result;
+    for (const auto &leaf : found)
+      result.push_back(leaf.second);
+    std::sort(result.begin(), result.end());
+    return result;
+  }
+
+  template <int dim>
+  typename Mortar<dim>::Patch
+  Mortar<dim>::patch(const unsigned int i) const
+  {
+    Patch      p;
+    const auto add = [](std::vector<unsigned int> &list, const unsigned int k) {
+      if (std::find(list.begin(), list.end(), k) == list.end())
+        list.push_back(k);
+    };
+    const unsigned int j      = surface_node[i];
+    const auto        &facets = slave->get_facets();
+    p.slave.push_back(j);
+    p.facets = facets_at[j];
+    // The facets at j, and (for the nodal normals of their nodes) the
+    // facets at those nodes.
+    for (const auto f : p.facets)
+      for (const auto k : facets[f].nodes)
+        for (const auto g : facets_at[k])
+          for (const auto m : facets[g].nodes)
+            add(p.slave, m);
+    std::vector<unsigned int> master;
+    for (const auto f : p.facets)
+      {
+        p.candidates.push_back(candidates(f, radius));
+        for (const auto c : p.candidates.back())
+          for (const auto m : this->surface->get_facets()[c].nodes)
+            master.push_back(m);
+      }
+    std::sort(master.begin(), master.end());
+    master.erase(std::unique(master.begin(), master.end()), master.end());
+    p.master = master;
+    return p;
+  }
+
+  template <int dim>
+  template <typename T>
+  void
+  Mortar<dim>::compute(const Patch                            &p,
+                       const std::vector<std::array<T, dim>> &xs,
+                       const std::vector<std::array<T, dim>> &xm,
+                       Terms<T>                               &t) const
+  {
+    t.master_nodes = p.master;
+    t.M.assign(p.master.size(), T(0.));
+    if constexpr (dim != 2)
+      {
+        AssertThrow(false, ExcNotImplemented());
+      }
+    else
+      {
+        using V               = std::array<T, 2>;
+        const auto &s_facets  = slave->get_facets();
+        const auto &m_facets  = this->surface->get_facets();
+        const auto &symmetric = slave->get_symmetry_flags();
+        const unsigned int ps = slave->degree(), pm = this->surface->degree();
+        const bool axisymmetric =
+          this->context.scene.analysis == AnalysisType::axisymmetric;
+        const auto facet_positions = [&](const unsigned int f) {
+          std::vector<V> X;
+          for (const auto k : s_facets[f].nodes)
+            X.push_back(xs[index_of(p.slave, k)]);
+          return X;
+        };
+        // Outward unit normal (a_y, -a_x)/|a| of slave facet f at its
+        // parameter xi.
+        const auto facet_normal = [&](const unsigned int f, const double xi) {
+          std::array<T, 3> N;
+          V                x, a;
+          line<T, T>(ps, facet_positions(f), T(xi), N, x, a);
+          return unit<T, 2>(V{{a[1], -a[0]}});
+        };
+        // Nodal normal: mean of the unit normals of the facets at the node
+        // (at a mid-side node: its facet's); at the end of the slave
+        // surface on a symmetry plane (or the axis), projected into the
+        // plane, as the mirror image of the end facet would make it.
+        const auto nodal_normal = [&](const unsigned int k) {
+          V n{{T(0.), T(0.)}};
+          for (const auto f : facets_at[k])
+            {
+              const unsigned int local = index_of(s_facets[f].nodes, k);
+              const auto         m = facet_normal(f, double(local) / ps);
+              n[0] += m[0];
+              n[1] += m[1];
+            }
+          bool end = facets_at[k].size() == 1 &&
+                     (index_of(s_facets[facets_at[k][0]].nodes, k) == 0 ||
+                      index_of(s_facets[facets_at[k][0]].nodes, k) == ps);
+          if (end)
+            for (unsigned int c = 0; c < 2; ++c)
+              if (symmetric[k][c] ||
+                  (c == 0 && axisymmetric &&
+                   std::abs(slave->get_nodes()[k].X[0]) <
+                     1e-10 * slave->facet_size()))
+                n[c] = 0.;
+          return unit<T, 2>(n);
+        };
+        t.normal = nodal_normal(p.slave[0]);
+
+        const QGauss<1> gauss(5);
+        struct Point_
+        {
+          std::array<T, 3> N, Nm;
+          T                wJ, gap;
+          unsigned int     master_facet;
+        };
+        for (const unsigned int f : p.facets)
+          {
+            const auto     X = facet_positions(f);
+            std::vector<V> n;
+            for (const auto k : s_facets[f].nodes)
+              n.push_back(nodal_normal(k));
+            // Slave point and (unnormalized) normal field at xi.
+            const auto field = [&](const auto &xi, auto &N, auto &x, auto &a,
+                                   auto &nn, auto &dnn) {
+              using S = std::decay_t<decltype(xi)>;
+              std::array<S, 3> dN;
+              lagrange(ps, xi, N.data(), dN.data());
+              for (unsigned int d = 0; d < 2; ++d)
+                {
+                  x[d] = a[d] = nn[d] = dnn[d] = 0.;
+                  for (unsigned int k = 0; k <= ps; ++k)
+                    {
+                      if constexpr (std::is_same_v<S, double>)
+                        {
+                          x[d] += N[k] * plain(X[k][d]);
+                          a[d] += dN[k] * plain(X[k][d]);
+                          nn[d] += N[k] * plain(n[k][d]);
+                          dnn[d] += dN[k] * plain(n[k][d]);
+                        }
+                      else
+                        {
+                          x[d] += N[k] * X[k][d];
+                          a[d] += dN[k] * X[k][d];
+                          nn[d] += N[k] * n[k][d];
+                          dnn[d] += dN[k] * n[k][d];
+                        }
+                    }
+                }
+            };
+            // The slave parameter xi whose normal line passes through y:
+            // (y - x(xi)) x n(xi) = 0.
+            const auto onto_slave = [&](const V &y, T &xi) {
+              const auto f = [&](const auto &s, auto &R, auto &dR) {
+                using S = std::decay_t<decltype(s)>;
+                std::array<S, 3> N;
+                std::array<S, 2> x, a, nn, dnn, r;
+                field(s, N, x, a, nn, dnn);
+                for (unsigned int d = 0; d < 2; ++d)
+                  {
+                    if constexpr (std::is_same_v<S, double>)
+                      r[d] = plain(y[d]) - x[d];
+                    else
+                      r[d] = y[d] - x[d];
+                  }
+                R  = cross(r, nn);
+                dR = cross(std::array<S, 2>{{-a[0], -a[1]}}, nn) + cross(r, dnn);
+              };
+              // Start: the projection onto the chord.
+              const double c0 = plain(X[0][0]), c1 = plain(X[0][1]);
+              const double e0 = plain(X[ps][0]) - c0, e1 = plain(X[ps][1]) - c1;
+              const double start =
+                ((plain(y[0]) - c0) * e0 + (plain(y[1]) - c1) * e1) /
+                (e0 * e0 + e1 * e1);
+              return solve_1d<T>(f, start, xi);
+            };
+            const double mid_normal[2] = {plain(facet_normal(f, 0.5)[0]),
+                                          plain(facet_normal(f, 0.5)[1])};
+            std::vector<Point_> points;
+            for (const unsigned int c : p.candidates[index_of(p.facets, f)])
+              {
+                std::vector<V> Y;
+                for (const auto m : m_facets[c].nodes)
+                  Y.push_back(xm[index_of(p.master, m)]);
+                // Only master facets that face the slave facet.
+                {
+                  std::array<double, 3> N;
+                  std::array<double, 2> y, b;
+                  std::vector<std::array<double, 2>> Yd;
+                  for (const auto &v : Y)
+                    Yd.push_back({{plain(v[0]), plain(v[1])}});
+                  line<double, double>(pm, Yd, 0.5, N, y, b);
+                  if (b[1] * mid_normal[0] - b[0] * mid_normal[1] >= 0.)
+                    continue;
+                }
+                // The segment: the master facet's ends projected onto the
+                // slave facet along the slave normal field, cut to [0, 1].
+                T xa, xb;
+                if (!onto_slave(Y[0], xa) || !onto_slave(Y[pm], xb))
+                  {
+                    t.failed = true;
+                    continue;
+                  }
+                using std::max;
+                using std::min;
+                const T lo = max(min(xa, xb), T(0.));
+                const T hi = min(max(xa, xb), T(1.));
+                if (!(plain(hi) - plain(lo) > 1e-12))
+                  continue;
+                for (unsigned int g = 0; g < gauss.size(); ++g)
+                  {
+                    Point_ q;
+                    const T xi = lo + (hi - lo) * gauss.point(g)[0];
+                    V       x, a, nn, dnn;
+                    field(xi, q.N, x, a, nn, dnn);
+                    nn = unit<T, 2>(nn);
+                    using std::sqrt;
+                    q.wJ = (hi - lo) * gauss.weight(g) *
+                           sqrt(a[0] * a[0] + a[1] * a[1]);
+                    if (axisymmetric)
+                      q.wJ *= 2. * numbers::PI * x[0];
+                    // The master point on the line through x along n:
+                    // (y(eta) - x) x n = 0.
+                    const auto h = [&](const auto &s, auto &R, auto &dR) {
+                      using S = std::decay_t<decltype(s)>;
+                      std::array<S, 3> N;
+                      std::array<S, 2> y, b, r, m;
+                      if constexpr (std::is_same_v<S, double>)
+                        {
+                          std::vector<std::array<double, 2>> Yd;
+                          for (const auto &v : Y)
+                            Yd.push_back({{plain(v[0]), plain(v[1])}});
+                          line<double, double>(pm, Yd, s, N, y, b);
+                          for (unsigned int d = 0; d < 2; ++d)
+                            {
+                              r[d] = y[d] - plain(x[d]);
+                              m[d] = plain(nn[d]);
+                            }
+                        }
+                      else
+                        {
+                          line<T, T>(pm, Y, s, N, y, b);
+                          for (unsigned int d = 0; d < 2; ++d)
+                            {
+                              r[d] = y[d] - x[d];
+                              m[d] = nn[d];
+                            }
+                        }
+                      R  = cross(r, m);
+                      dR = cross(b, m);
+                    };
+                    T eta;
+                    if (!solve_1d<T>(h, 0.5, eta))
+                      {
+                        t.failed = true;
+                        continue;
+                      }
+                    V y, b;
+                    line<T, T>(pm, Y, eta, q.Nm, y, b);
+                    q.gap = (y[0] - x[0]) * nn[0] + (y[1] - x[1]) * nn[1];
+                    q.master_facet = c;
+                    points.push_back(q);
+                  }
+              }
+            if (points.empty())
+              continue;
+            // The dual basis on the covered part: A = D M^{-1}.
+            const unsigned int          n_s = ps + 1;
+            std::vector<T>              D(n_s, T(0.));
+            std::vector<std::vector<T>> M(n_s, std::vector<T>(n_s, T(0.)));
+            T                           covered = 0.;
+            for (const auto &q : points)
+              {
+                covered += q.wJ;
+                for (unsigned int k = 0; k < n_s; ++k)
+                  {
+                    D[k] += q.N[k] * q.wJ;
+                    for (unsigned int l = 0; l < n_s; ++l)
+                      M[k][l] += q.N[k] * q.N[l] * q.wJ;
+                  }
+              }
+            if (!invert(M))
+              continue;
+            const unsigned int kj = index_of(s_facets[f].nodes, p.slave[0]);
+            std::vector<T>     A(n_s);
+            for (unsigned int l = 0; l < n_s; ++l)
+              A[l] = D[kj] * M[kj][l];
+            for (const auto &q : points)
+              {
+                T phi = 0.;
+                for (unsigned int l = 0; l < n_s; ++l)
+                  phi += A[l] * q.N[l];
+                t.weighted_gap += phi * q.gap * q.wJ;
+                const auto &mn = m_facets[q.master_facet].nodes;
+                for (unsigned int l = 0; l <= pm; ++l)
+                  t.M[index_of(p.master, mn[l])] += phi * q.Nm[l] * q.wJ;
+              }
+            t.weight += D[kj];
+          }
+      }
+  }
+
+  template <int dim>
+  typename Mortar<dim>::template Terms<double>
+  Mortar<dim>::terms(const unsigned int i) const
+  {
+    const Patch                          p = patch(i);
+    std::vector<std::array<double, dim>> xs, xm;
+    for (const auto k : p.slave)
+      {
+        std::array<double, dim> x;
+        for (unsigned int d = 0; d < dim; ++d)
+          x[d] = slave_x[k][d];
+        xs.push_back(x);
+      }
+    for (const auto k : p.master)
+      {
+        std::array<double, dim> x;
+        for (unsigned int d = 0; d < dim; ++d)
+          x[d] = this->surface->get_positions()[k][d];
+        xm.push_back(x);
+      }
+    Terms<double> t;
+    compute(p, xs, xm, t);
+    return t;
+  }
+
+  template <int dim>
+  Constraint<dim>
+  Mortar<dim>::evaluate(const unsigned int i, const VectorType &U) const
+  {
+    Constraint<dim> s;
+    s.x     = this->position(i, U);
+    s.point = s.x;
+    const auto t = terms(i);
+    Tensor<1, dim> n;
+    for (unsigned int d = 0; d < dim; ++d)
+      n[d] = t.normal[d];
+    // The force on the slave pushes it along -n_j (n_j: outward slave
+    // normal); Constraint::normal is that direction, as for node to surface
+    // (the master's normal).
+    s.normal   = -n;
+    s.tangents = contact_tangents<dim>(s.normal);
+    // A node whose facets the master covers over less than a millionth of
+    // its weight has no constraint (as a node beyond the end of the master).
+    if (t.weight > 1e-6 * (*this->nodes)[i].area)
+      {
+        s.outcome = Outcome::found;
+        s.gap     = t.weighted_gap / t.weight;
+      }
+    else
+      s.outcome = t.failed ? Outcome::failed : Outcome::beyond_end;
+    return s;
+  }
+
+  template <int dim>
+  void
+  Mortar<dim>::linearize(const unsigned int i,
+                         const Constraint<dim> &,
+                         const VectorType &,
+                         Linearization &l) const
+  {
+    const Patch        p  = patch(i);
+    const unsigned int n  = dim * (p.slave.size() + p.master.size());
+    const unsigned int nm = dim * p.slave.size();
+    std::vector<std::array<Fad, dim>> xs(p.slave.size()), xm(p.master.size());
+    l.dofs.clear();
+    for (unsigned int a = 0; a < p.slave.size(); ++a)
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          xs[a][d] = Fad(n, dim * a + d, slave_x[p.slave[a]][d]);
+          l.dofs.push_back(slave->get_nodes()[p.slave[a]].dofs[d]);
+        }
+    for (unsigned int a = 0; a < p.master.size(); ++a)
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          xm[a][d] = Fad(n,
+                         nm + dim * a + d,
+                         this->surface->get_positions()[p.master[a]][d]);
+          l.dofs.push_back(this->surface->get_nodes()[p.master[a]].dofs[d]);
+        }
+    Terms<Fad> t;
+    compute(p, xs, xm, t);
+    const Fad g = t.weighted_gap / t.weight;
+    // G = dg/dx at fixed n_j, D and M: -n_j on the slave node, (M_jm /
+    // D_jj) n_j on master node m.
+    std::vector<Fad> G(n, Fad(0.));
+    for (unsigned int d = 0; d < dim; ++d)
+      G[d] = -t.normal[d];
+    for (unsigned int a = 0; a < p.master.size(); ++a)
+      for (unsigned int d = 0; d < dim; ++d)
+        G[nm + dim * a + d] = t.M[a] / t.weight * t.normal[d];
+    l.gap = g.val();
+    for (unsigned int d = 0; d < dim; ++d)
+      l.normal[d] = -t.normal[d].val();
+    l.dgap.reinit(n);
+    l.force.reinit(n);
+    l.dforce.reinit(n, n);
+    for (unsigned int a = 0; a < n; ++a)
+      {
+        l.dgap(a)  = g.size() > 0 ? g.dx(a) : 0.;
+        l.force(a) = G[a].val();
+        if (G[a].size() > 0)
+          for (unsigned int b = 0; b < n; ++b)
+            l.dforce(a, b) = G[a].dx(b);
+      }
+  }
+
+  template <int dim>
+  void
+  Mortar<dim>::couplings(const unsigned int                    i,
+                         const VectorType                     &U,
+                         std::vector<types::global_dof_index> &dofs)
+  {
+    if (slave_x.empty())
+      move(U);
+    // The slave nodes of the patch and the master nodes of the facets
+    // within twice the search radius (so that the pattern holds while the
+    // surfaces slide by up to one facet).
+    const Patch p = patch(i);
+    for (const auto k : p.slave)
+      for (unsigned int d = 0; d < dim; ++d)
+        dofs.push_back(slave->get_nodes()[k].dofs[d]);
+    std::vector<unsigned int> master;
+    for (const auto f : p.facets)
+      for (const auto c : candidates(f, 2. * radius))
+        for (const auto m : this->surface->get_facets()[c].nodes)
+          master.push_back(m);
+    std::sort(master.begin(), master.end());
+    master.erase(std::unique(master.begin(), master.end()), master.end());
+    coupled[i] = master;
+    for (const auto m : master)
+      for (unsigned int d = 0; d < dim; ++d)
+        dofs.push_back(this->surface->get_nodes()[m].dofs[d]);
+  }
+
+  template <int dim>
+  bool
+  Mortar<dim>::outside_pattern(const unsigned int i,
+                               const Constraint<dim> &) const
+  {
+    const Patch p = patch(i);
+    return !std::includes(coupled[i].begin(),
+                          coupled[i].end(),
+                          p.master.begin(),
+                          p.master.end());
+  }
+
+  template <int dim>
+  void
+  Mortar<dim>::commit_step(const VectorType                   &U,
+                           const std::vector<Constraint<dim>> &s,
+                           const std::vector<bool>            &closed,
+                           const double,
+                           const double)
+  {
+    const auto &nodes = *this->nodes;
+    move(U);
+    std::vector<std::string> failed;
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      {
+        if (s[i].outcome == Outcome::failed)
+          {
+            std::ostringstream text;
+            text << "(" << nodes[i].X << ")";
+            failed.push_back(text.str());
+          }
+        // Slip (R12): the tangential motion of the node relative to its
+        // mortar point sum_m (M_jm / D_jj) x_m, while closed.
+        const auto  t = terms(i);
+        Point<dim>  point;
+        const auto &x = this->surface->get_positions();
+        if (t.weight > 0.)
+          for (unsigned int a = 0; a < t.master_nodes.size(); ++a)
+            point += (t.M[a] / t.weight) * x[t.master_nodes[a]];
+        const bool found = s[i].found();
+        if (closed[i] && found && previous_found[i])
+          this->accumulate_slip(i,
+                                s[i].normal,
+                                (s[i].x - previous_position[i]) -
+                                  (point - previous_point[i]));
+        previous_position[i] = s[i].x;
+        previous_point[i]    = point;
+        previous_found[i]    = found;
+      }
+    this->context.report(
+      failed,
+      "warning: contact pair '" + this->context.parameters.name +
+        "': a mortar projection did not converge for ",
+      " slave node(s), which count as open in this step (node positions in "
+      "the reference configuration)");
+  }
+
+  template class Mortar<2>;
+  template class Mortar<3>;
+} // namespace glide
