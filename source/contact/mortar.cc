@@ -219,7 +219,14 @@ namespace glide
     for (unsigned int f = 0; f < facets.size(); ++f)
       for (const auto k : facets[f].nodes)
         facets_at[k].push_back(f);
-    radius = std::max(slave->facet_size(), this->surface->facet_size());
+    // Search radius per slave facet: 1.5 times its length in the
+    // reference configuration (as node to surface searches around a slave
+    // node): a master facet of any size whose box comes that close is a
+    // candidate, and a penetration of up to that much is still found.
+    radius.clear();
+    for (const auto &facet : facets)
+      radius.push_back(1.5 * surface_nodes[facet.nodes.front()].X.distance(
+                               surface_nodes[facet.nodes.back()].X));
     coupled.assign(nodes.size(), {});
     previous_position.clear();
     for (const auto &node : nodes)
@@ -306,7 +313,7 @@ namespace glide
     std::vector<unsigned int> master;
     for (const auto f : p.facets)
       {
-        p.candidates.push_back(candidates(f, radius));
+        p.candidates.push_back(candidates(f, radius[f]));
         for (const auto c : p.candidates.back())
           for (const auto m : this->surface->get_facets()[c].nodes)
             master.push_back(m);
@@ -697,7 +704,7 @@ namespace glide
         dofs.push_back(slave->get_nodes()[k].dofs[d]);
     std::vector<unsigned int> master;
     for (const auto f : p.facets)
-      for (const auto c : candidates(f, 2. * radius))
+      for (const auto c : candidates(f, 2. * radius[f]))
         for (const auto m : this->surface->get_facets()[c].nodes)
           master.push_back(m);
     std::sort(master.begin(), master.end());

@@ -1321,6 +1321,154 @@ def case_patch_test_and_hard_cases():
     common(rows, 0.01 / (0.5 + 0.5e-6), "stiffness ratio 1e6")
 
 
+def perturbed_patch_inp(path, n_lower, n_upper, seed, amplitude=0.2):
+    """An Abaqus file with the two blocks of parameters/patch-test.prm
+    (lower [0,1] x [0,0.5] with n_lower x n_lower cells, upper [0,1] x
+    [0.5,1] with n_upper x n_upper), every interior node moved by a seeded
+    random offset of up to amplitude times the local cell size
+    (reference/benchmarks.md section 3, perturbed variant): interface nodes
+    other than its end nodes along the interface only, the other boundary
+    nodes not at all. The exact solution (uniform stress, nu = 0) is that
+    of the unperturbed meshes: it is linear, so every mesh represents it."""
+    import random
+    rng = random.Random(seed)
+    lines = ["*HEADING", "perturbed contact patch test (glide scene test)", "*NODE"]
+    elements, surfaces = [], {}
+    node_id, element_id = 1, 1
+    for body, (y0, n, interface_row) in {"LOWER": (0.0, n_lower, n_lower), "UPPER": (0.5, n_upper, 0)}.items():
+        h = 1.0 / n
+        ids = {}
+        for j in range(n + 1):
+            for i in range(n + 1):
+                x, y = i * h, y0 + 0.5 * j / n
+                on_x_edge, on_y_edge = i in (0, n), j in (0, n)
+                if not on_x_edge and not on_y_edge:
+                    x += amplitude * h * rng.uniform(-1, 1)
+                    y += amplitude * 0.5 * h * rng.uniform(-1, 1)
+                elif j == interface_row and not on_x_edge:
+                    x += amplitude * h * rng.uniform(-1, 1)
+                ids[i, j] = node_id
+                lines.append(f"{node_id}, {x:.17g}, {y:.17g}")
+                node_id += 1
+        for j in range(n):
+            for i in range(n):
+                elements.append((body, element_id, ids[i, j], ids[i + 1, j], ids[i + 1, j + 1], ids[i, j + 1]))
+                for name, face, hit in (("bottom", "S1", j == 0), ("right", "S2", i == n - 1),
+                                        ("top", "S3", j == n - 1), ("left", "S4", i == 0)):
+                    if hit:
+                        surfaces.setdefault((body, name), []).append((element_id, face))
+                element_id += 1
+    for body in ("LOWER", "UPPER"):
+        lines.append(f"*ELEMENT, TYPE=CPE4, ELSET={body}")
+        lines += [f"{e}, {a}, {b}, {c}, {d}" for bb, e, a, b, c, d in elements if bb == body]
+    for (body, name), faces in surfaces.items():
+        lines.append(f"*ELSET, ELSET={body}_{name}_{faces[0][1]}")
+        lines += [str(e) for e, _ in faces]
+    for (body, name), faces in surfaces.items():
+        lines.append(f"*SURFACE, NAME={name}, TYPE=ELEMENT")
+        lines.append(f"{body}_{name}_{faces[0][1]}, {faces[0][1]}")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def case_mortar_patch_test():
+    """Issue 14 (R14.5, R14.6, R14.7): the contact patch test with mortar
+    contact on parameters/patch-test.prm (E = 1e6, nu = 0, top pushed down
+    0.01 over a stack of height 1). Exact: uniform contact pressure
+    E (0.01 + g0) / 1, with g0 = 1e-10 x the scene size the clearance that
+    hard contact leaves between touching surfaces (HardEnforcement), so
+    1e4 (1 + 1.4e-8); uniform to round-off. Checked for every variant:
+    - every nodal pressure within 1e-10 (relative) of the mean, and the mean
+      within 1e-7 of 1e4 (the clearance's 1.4e-8 is inside that);
+    - force balance (R14.6): the contact force on the slave equals the
+      reaction of the lower block's support to 1e-10;
+    - at most 2 Newton iterations (the problem is linear once the active
+      set is right, and the tangent predictor usually solves it), no
+      cut-back.
+    Variants: non-matching 8 over 5 and 7 over 5 cells, roles swapped,
+    degree 2 (R14.7), finite strain, and perturbed meshes (interior nodes
+    moved randomly by up to 20 % of a cell, seeded; read from a generated
+    Abaqus file). Penalty: the penetration is uniform to 1e-10 instead.
+    Node to surface on the same non-matching meshes is off by 6.6 % (see
+    case_patch_test_and_hard_cases): the assertions here fail for it."""
+    inp = os.path.join(tempfile.mkdtemp(prefix="glide-patch-"), "perturbed.inp")
+    perturbed_patch_inp(inp, 5, 7, seed=20261203)
+    from_file = ["Body lower/Mesh=file", f"Body lower/Mesh file={inp}", "Body lower/Element set=LOWER",
+                 "Body upper/Mesh=file", f"Body upper/Mesh file={inp}", "Body upper/Element set=UPPER"]
+    swapped = ["Contact pair interface/Slave=lower.top", "Contact pair interface/Master=upper.bottom"]
+    variants = {
+        "mortar_8_over_5": [],
+        "mortar_7_over_5": ["Body upper/Block/Subdivisions=7, 7"],
+        "mortar_swapped": swapped,
+        "mortar_degree_2": ["Discretization/Element degree=2"],
+        "mortar_degree_2_swapped": ["Discretization/Element degree=2"] + swapped,
+        "mortar_perturbed": from_file,
+        "mortar_perturbed_swapped": from_file + swapped,
+        "mortar_perturbed_degree_2": from_file + ["Discretization/Element degree=2"],
+    }
+    for name, sets in variants.items():
+        rows, p = patch("Contact pair interface/Formulation=mortar", *sets, name=name)
+        mean = sum(p) / len(p)
+        spread = max(abs(x / mean - 1) for x in p)
+        print(f"measured: {name}: {len(p)} slave nodes, mean pressure {mean:.12g}, largest deviation {spread:.2e}")
+        check(spread <= 1e-10, f"{name}: uniform pressure (largest relative deviation {spread:.2e})")
+        close(mean, 1e4, 1e-7, f"{name}: mean pressure")
+        force = abs(rows[-1]["contact_interface_force_y"])
+        close(force, rows[-1]["reaction_bottom_y"], 1e-10, f"{name}: contact force = support reaction")
+        check(rows[-1]["cut_backs"] == 0 and rows[-1]["kinsol_iterations"] <= 2,
+              f"{name}: {rows[-1]['kinsol_iterations']:.0f} iteration(s), no cut-back")
+    # Finite strain: uniform (Cauchy) pressure, force balance.
+    rows, p = patch("Contact pair interface/Formulation=mortar", "Discretization/Geometric nonlinearity=true",
+                    *from_file, name="mortar_perturbed_finite_strain")
+    mean = sum(p) / len(p)
+    spread = max(abs(x / mean - 1) for x in p)
+    check(spread <= 1e-10, f"finite strain: uniform pressure (largest relative deviation {spread:.2e})")
+    close(abs(rows[-1]["contact_interface_force_y"]), rows[-1]["reaction_bottom_y"], 1e-10,
+          "finite strain: contact force = support reaction")
+    # Penalty with a given stiffness per unit area: uniform penetration
+    # p / stiffness (the default stiffness, 1000 E / h with h the size of
+    # the facets at each node, varies with the local mesh size on the
+    # perturbed mesh, and so does the penetration).
+    for name, sets in {"mortar_penalty": [], "mortar_penalty_perturbed": from_file}.items():
+        rows, _, out = run(scene_file("patch-test.prm"), "Output/Write VTU=false",
+                           "Contact pair interface/Formulation=mortar", "Contact pair interface/Enforcement=penalty",
+                           "Contact pair interface/Penalty stiffness=1e10", *sets, name=name)
+        gaps = [n["COPEN"] for n in contact_nodes(out, "interface")]
+        mean = sum(gaps) / len(gaps)
+        spread = max(abs(g / mean - 1) for g in gaps)
+        check(mean < 0 and spread <= 1e-8,
+              f"{name}: uniform penetration {mean:.6g} (largest relative deviation {spread:.2e})")
+        close(-mean, rows[-1]["reaction_bottom_y"] / 1e10, 1e-8, f"{name}: penetration = pressure / stiffness")
+        close(abs(rows[-1]["contact_interface_force_y"]), rows[-1]["reaction_bottom_y"], 1e-10,
+              f"{name}: contact force = support reaction")
+
+
+def case_mortar_hertz_2d():
+    """Issue 14: parameters/hertz-2d-elastic.prm (two elastic bodies,
+    reference p0 = 0.013225, a = 0.048139; the block's finite size changes
+    them by about 1 %) with mortar contact, the block as the slave (the
+    coarser side: with the finer cylinder as slave, the dual multipliers
+    oscillate from node to node, doc/theory/mortar.md). Checks: peak
+    pressure within 2 % of p0; no node-to-node zigzag of the pressure
+    larger than 1 % in the central half of the contact zone (largest
+    |p_i - (p_i-1 + p_i+1)/2| / p0); force balance to 1e-10; no cut-back."""
+    rows, _, out = run(scene_file("hertz-2d-elastic.prm"), "Output/Write VTU=false",
+                       "Contact pair hertz/Formulation=mortar", "Contact pair hertz/Slave=block.top",
+                       "Contact pair hertz/Master=cylinder.curved", name="mortar_hertz")
+    nodes = sorted((n["X"], n["CPRESS"]) for n in contact_nodes(out, "hertz"))
+    p0, a = 0.013225, 0.048139
+    peak = max(p for _, p in nodes)
+    print(f"measured: mortar Hertz 2D, peak pressure {peak:.6g} ({peak / p0 - 1:+.2%})")
+    close(peak, p0, 0.02, "peak pressure")
+    central = [p for x, p in nodes if abs(x) <= a / 2]
+    zigzag = max(abs(central[i] - 0.5 * (central[i - 1] + central[i + 1])) for i in range(1, len(central) - 1)) / p0
+    print(f"measured: zigzag in the central half {zigzag:.3%} over {len(central)} nodes")
+    check(len(central) >= 5 and zigzag <= 0.01, f"no zigzag larger than 1 % ({zigzag:.3%})")
+    close(abs(rows[-1]["contact_hertz_force_y"]), 1e-3, 1e-10, "contact force = applied load")
+    check(rows[-1]["cut_backs"] == 0, "no cut-back")
+    print(f"measured: Newton iterations per step {[int(r['kinsol_iterations']) for r in rows]}")
+
+
 def case_axisymmetric_master_on_the_axis(*extra):
     """Issue 3 (R2.2): parameters/hertz-axisymmetric-elastic.prm (block
     refined one level less): an elastic sphere as the master, ending on the

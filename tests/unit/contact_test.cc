@@ -430,7 +430,8 @@ TEST(Contact, ResidualIsAFunctionOfTheIterate)
   // R16.1, for every formulation and enforcement: node to surface against
   // analytical rigid masters (hard, penalty), finite sliding on a
   // deformable master (faceted f = 0, smoothed f = 0.2), small-sliding
-  // node to surface and surface to surface, in 2D and 3D where they exist.
+  // node to surface and surface to surface, mortar (hard, penalty), in 2D
+  // and 3D where they exist.
   for (const char *master : {"rigid plane", "rigid circle"})
     for (const char *enforcement : {"hard", "penalty"})
       {
@@ -446,7 +447,10 @@ TEST(Contact, ResidualIsAFunctionOfTheIterate)
                            "  set Enforcement = penalty\n",
                            "  set Sliding = small\n",
                            "  set Sliding = small\n"
-                           "  set Formulation = surface to surface\n"})
+                           "  set Formulation = surface to surface\n",
+                           "  set Formulation = mortar\n",
+                           "  set Formulation = mortar\n"
+                           "  set Enforcement = penalty\n"})
     expect_pure_residual<2>(two_blocks(pair),
                             "blocks" +
                               std::to_string(std::string(pair).size()));
@@ -462,7 +466,8 @@ TEST(Contact, FormulationsAreChosenByName)
     // Small sliding in a geometrically linear scene is infinitesimal.
     {"  set Sliding = small\n", "node to surface, infinitesimal sliding"},
     {"  set Sliding = small\n  set Formulation = surface to surface\n",
-     "surface to surface, infinitesimal sliding"}};
+     "surface to surface, infinitesimal sliding"},
+    {"  set Formulation = mortar\n", "mortar, finite sliding"}};
   for (const auto &[pair, name] : cases)
     {
       glide_test::ContactFixture<2> s(two_blocks(pair), "names.prm");

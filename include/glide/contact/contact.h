@@ -169,6 +169,20 @@ namespace glide
     const std::vector<typename SmallSliding<dim>::Anchor> &
     anchors(const unsigned int pair) const;
 
+    /// The formulation of pair @p pair (for tests).
+    const Formulation<dim> &
+    formulation_of(const unsigned int pair) const
+    {
+      return *pairs[pair].formulation;
+    }
+
+    /// The locally owned slave nodes of pair @p pair (for tests).
+    const std::vector<SlaveNode<dim>> &
+    slave_nodes(const unsigned int pair) const
+    {
+      return pairs[pair].nodes;
+    }
+
   private:
     struct Pair
     {

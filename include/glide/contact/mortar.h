@@ -157,9 +157,8 @@ namespace glide
     std::vector<unsigned int> surface_node;
     /// Slave surface node -> the slave facets at it.
     std::vector<std::vector<unsigned int>> facets_at;
-    /// Search radius around a slave facet: the larger facet size of the
-    /// two sides.
-    double radius = 0.;
+    /// Per slave facet: the search radius around it.
+    std::vector<double> radius;
     /// Current positions of the slave surface's nodes, and the search tree
     /// of the master facets' bounding boxes (a function of U, rebuilt when
     /// the master moved).

@@ -1,0 +1,226 @@
+// Unit tests of mortar contact (issue 14, R14.1-R14.4, R14.7). Why the
+// expected answers are right:
+// - the contact Jacobian must be the derivative of the contact residual
+//   (R14.4): central finite differences, on curved and flat, matching and
+//   non-matching surfaces, with slave facets partly outside the master, for
+//   degree 1 and 2, hard and penalty, plane strain and axisymmetric;
+// - the dual basis is biorthogonal (R14.1): on a slave surface that the
+//   master covers entirely, D_jj is the node's tributary area int N_j dA,
+//   and since the master's shape functions sum to one, sum_m M_jm = D_jj;
+// - a flat master parallel to a flat slave at distance d has the weighted
+//   gap g~_j = d D_jj exactly (R14.2: a flat interface is integrated
+//   exactly), whatever the meshes.
+#include <glide/contact/contact.h>
+#include <glide/contact/mortar.h>
+
+#include "test_helpers.h"
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+using namespace dealii;
+using namespace glide;
+
+namespace
+{
+  /// Two stacked blocks: the upper one [x0, x1] x [gap, gap + 0.5] (its
+  /// bottom the slave, n_upper cells across) on the lower one [0, 1] x [-1,
+  /// 0] (its top the master, n_lower cells across).
+  std::string
+  stacked_blocks(const double       x0,
+                 const double       x1,
+                 const double       gap,
+                 const unsigned int n_upper,
+                 const unsigned int n_lower,
+                 const std::string &pair,
+                 const unsigned int degree = 1)
+  {
+    std::ostringstream s;
+    s << "set Dimension = 2\nset Analysis type = plane strain\n"
+      << "subsection Discretization\n  set Element degree = " << degree
+      << "\nend\nset Bodies = lower, upper\nset Boundary conditions = hold\n"
+      << "set Contact pairs = pair\n"
+      << "subsection Body lower\n  subsection Block\n"
+      << "    set Lower corner = 0, -1\n    set Upper corner = 1, 0\n"
+      << "    set Subdivisions = " << n_lower << ", 2\n  end\nend\n"
+      << "subsection Body upper\n  subsection Block\n"
+      << "    set Lower corner = " << x0 << ", " << gap
+      << "\n    set Upper corner = " << x1 << ", " << gap + 0.5
+      << "\n    set Subdivisions = " << n_upper << ", 2\n  end\nend\n"
+      << "subsection Boundary condition hold\n  set Surface = lower.bottom\n"
+      << "  set Type = fixed\nend\n"
+      << "subsection Contact pair pair\n  set Slave = upper.bottom\n"
+      << "  set Master = lower.top\n  set Formulation = mortar\n"
+      << pair << "end\n";
+    return s.str();
+  }
+
+  /// A ball (hertz mesh, radius 1) dipping 0.05 into a block [0, 1]^2
+  /// (axisymmetric: the block's left side on the axis); @p ball_slave
+  /// makes the ball's curved surface the slave.
+  std::string
+  ball_on_block(const std::string &analysis,
+                const bool         ball_slave,
+                const unsigned int degree,
+                const std::string &enforcement)
+  {
+    const bool         axi = analysis == "axisymmetric";
+    std::ostringstream s;
+    s << "set Dimension = 2\nset Analysis type = " << analysis
+      << "\nsubsection Discretization\n  set Element degree = " << degree
+      << "\nend\nset Bodies = block, ball\n"
+      << "set Boundary conditions = hold, top\nset Contact pairs = pair\n"
+      << "subsection Body block\n  subsection Block\n"
+      << "    set Lower corner = 0, 0\n    set Upper corner = 1, 1\n"
+      << "    set Subdivisions = 7, 2\n  end\nend\n"
+      << "subsection Body ball\n  set Mesh = hertz\n"
+      << "  subsection Round shapes\n    set Center = "
+      << (axi ? "0, 1.95" : "0.5, 1.95") << "\n    set Radius = 1\n  end\n"
+      << "  subsection Refinement\n    set Global refinements = 2\n  end\nend\n"
+      << "subsection Boundary condition hold\n  set Surface = block.bottom\n"
+      << "  set Type = fixed\nend\n"
+      << "subsection Boundary condition top\n  set Surface = ball.flat\n"
+      << "  set Type = fixed\nend\n"
+      << "subsection Contact pair pair\n  set Slave = "
+      << (ball_slave ? "ball.curved" : "block.top")
+      << "\n  set Master = " << (ball_slave ? "block.top" : "ball.curved")
+      << "\n  set Formulation = mortar\n  set Enforcement = " << enforcement
+      << "\nend\n";
+    return s.str();
+  }
+
+  /// The contact Jacobian of the scene @p text at a random state near the
+  /// reference configuration against central finite differences.
+  void
+  expect_exact_jacobian(const std::string &text,
+                        const std::string &tag,
+                        const double       displacement)
+  {
+    glide_test::ContactFixture<2> s(text, "mortar_fd_" + tag + ".prm");
+    VectorType                    U, v;
+    glide_test::random_contact_state(
+      s.e, s.contact, U, v, 3, displacement, 0.02);
+    if (s.contact.needs_new_pattern(U))
+      s.e.setup_system(s.contact.owned_multipliers(),
+                       [&](DynamicSparsityPattern &dsp) {
+                         s.contact.add_sparsity(dsp);
+                       });
+    const auto [err, ref] =
+      glide_test::contact_jacobian_error(s.e, s.contact, U, v, 1e-7);
+    EXPECT_GT(ref, 0.) << tag;
+    EXPECT_LT(err, 1e-6 * ref) << tag;
+    // Both branches of the complementarity function occur.
+    const auto   stats  = s.contact.statistics(U);
+    const int    active = std::stoi(stats[0].second);
+    unsigned int n      = 0;
+    for (const auto &st : s.contact.status(U))
+      n += st.closed ? 0 : 1;
+    EXPECT_GT(active, 0) << tag << ": some nodes closed";
+    EXPECT_GT(n, 0u) << tag << ": some nodes open";
+  }
+
+  const Mortar<2> &
+  mortar_of(const glide_test::ContactFixture<2> &s)
+  {
+    const auto *m =
+      dynamic_cast<const Mortar<2> *>(&s.contact.formulation_of(0));
+    EXPECT_NE(m, nullptr);
+    return *m;
+  }
+} // namespace
+
+// R14.4: the consistent linearization (variation of the segments, of the
+// slave normals, of the projections and of the dual basis).
+TEST(Mortar, JacobianMatchesFiniteDifferences)
+{
+  for (const char *enforcement : {"hard", "penalty"})
+    {
+      const std::string e(enforcement);
+      // Curved master over a flat slave, and curved slave on a flat master.
+      expect_exact_jacobian(ball_on_block("plane strain", false, 1, e),
+                            "ball_master_" + e,
+                            0.01);
+      expect_exact_jacobian(ball_on_block("plane strain", true, 1, e),
+                            "ball_slave_" + e,
+                            0.01);
+      // Axisymmetric, the slave ending on the axis.
+      expect_exact_jacobian(ball_on_block("axisymmetric", false, 1, e),
+                            "axi_" + e,
+                            0.01);
+      // Degree 2, curved facets on both sides.
+      expect_exact_jacobian(ball_on_block("plane strain", true, 2, e),
+                            "quadratic_" + e,
+                            0.005);
+      // Flat, non-matching, the slave's end facets partly outside the
+      // master (the upper block overhangs the lower one on the right).
+      expect_exact_jacobian(stacked_blocks(0.55,
+                                           1.25,
+                                           -0.01,
+                                           5,
+                                           3,
+                                           "  set Enforcement = " + e + "\n"),
+                            "overhang_" + e,
+                            0.005);
+    }
+}
+
+// R14.1, R14.2: biorthogonality and exact integration on flat surfaces.
+TEST(Mortar, DualBasisAndExactWeightedGapOnFlatSurfaces)
+{
+  for (const unsigned int degree : {1u, 2u})
+    for (const auto &[n_upper, n_lower] :
+         std::vector<std::pair<unsigned int, unsigned int>>{{5, 5},
+                                                            {7, 5},
+                                                            {3, 8}})
+      {
+        const double d = 0.0123;
+        glide_test::ContactFixture<2> s(
+          stacked_blocks(0., 1., d, n_upper, n_lower, "", degree),
+          "mortar_flat.prm");
+        VectorType U(s.e.locally_owned(), MPI_COMM_WORLD);
+        const auto &m     = mortar_of(s);
+        const auto &nodes = s.contact.slave_nodes(0);
+        m.move(U);
+        ASSERT_EQ(nodes.size(), degree * n_upper + 1);
+        for (unsigned int i = 0; i < nodes.size(); ++i)
+          {
+            const auto t = m.terms(i);
+            EXPECT_NEAR(t.weight, nodes[i].area, 1e-14)
+              << "D_jj = int N_j dA, degree " << degree;
+            double sum = 0.;
+            for (const double x : t.M)
+              sum += x;
+            EXPECT_NEAR(sum, t.weight, 1e-14) << "sum_m M_jm = D_jj";
+            EXPECT_NEAR(t.weighted_gap, d * t.weight, 1e-15)
+              << "weighted gap of a uniform gap d";
+            EXPECT_NEAR(t.normal[0], 0., 1e-15);
+            EXPECT_NEAR(t.normal[1], -1., 1e-15) << "outward slave normal";
+          }
+      }
+}
+
+// R14.7 and the input rules: mortar is finite sliding on a master surface
+// of a body, 2D so far; anything else is refused with a message that names
+// the parameter.
+TEST(Mortar, RefusedWhereItDoesNotApply)
+{
+  const auto refused = [](const std::string &text, const std::string &what) {
+    try
+      {
+        glide_test::ContactFixture<2> s(text, "mortar_refused.prm");
+        ADD_FAILURE() << "accepted: " << what;
+      }
+    catch (const std::exception &e)
+      {
+        EXPECT_NE(std::string(e.what()).find(what), std::string::npos)
+          << e.what();
+      }
+  };
+  refused(stacked_blocks(0., 1., 0., 3, 3, "  set Sliding = small\n"),
+          "'Sliding = finite'");
+  std::string rigid = stacked_blocks(0., 1., 0., 3, 3, "");
+  rigid.replace(rigid.find("set Master = lower.top"),
+                std::string("set Master = lower.top").size(),
+                "set Master = rigid plane");
+  refused(rigid, "master surface of a body");
+}
