@@ -334,10 +334,8 @@ namespace glide
   {
     t.master_nodes = p.master;
     t.M.assign(p.master.size(), T(0.));
-    if constexpr (dim != 2)
-      {
-        AssertThrow(false, ExcNotImplemented());
-      }
+    if constexpr (dim == 3)
+      compute_3d(p, xs, xm, t);
     else
       {
         using V               = std::array<T, 2>;

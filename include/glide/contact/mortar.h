@@ -143,6 +143,14 @@ namespace glide
             const std::vector<std::array<T, dim>> &xm,
             Terms<T>                               &terms) const;
 
+    /// compute() in 3D (source/contact/mortar_3d.cc).
+    template <typename T>
+    void
+    compute_3d(const Patch                            &p,
+               const std::vector<std::array<T, dim>> &xs,
+               const std::vector<std::array<T, dim>> &xm,
+               Terms<T>                               &terms) const;
+
     /// Master facets whose current bounding box comes within @p radius of
     /// that of slave facet @p facet.
     std::vector<unsigned int>
