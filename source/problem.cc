@@ -471,6 +471,13 @@ namespace glide
         monitor.reset();
         if (scene.load_stepping.tangent_predictor)
           predict(U, t, U_trial);
+        if (contact.active())
+          if (const unsigned int n = contact.close_touching_nodes(U_trial))
+            pcout << "  initial active set: " << n
+                  << " slave node(s) within 1 % of their facet size of the "
+                     "master start closed (no node of their pair was in "
+                     "contact)"
+                  << std::endl;
         const auto result = solve_step(U_trial);
         if (!result.converged)
           {

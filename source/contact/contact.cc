@@ -640,6 +640,38 @@ namespace glide
   }
 
   template <int dim>
+  unsigned int
+  Contact<dim>::close_touching_nodes(VectorType &U) const
+  {
+    unsigned int n_closed = 0;
+    for (const auto &pair : pairs)
+      {
+        if (pair.enforcement->block_size() == 0)
+          continue;
+        const auto s = constraints(pair, U);
+        const auto f = forces(pair, s, U);
+        bool       any_closed =
+          std::any_of(f.begin(), f.end(), [](const auto &x) {
+            return x.closed;
+          });
+        if (Utilities::MPI::max(any_closed ? 1 : 0, comm) > 0)
+          continue;
+        for (unsigned int i = 0; i < s.size(); ++i)
+          {
+            const auto &node = pair.nodes[i];
+            if (s[i].found() && s[i].gap - clearance <= 0.01 * node.size)
+              {
+                U[node.multiplier] =
+                  node.c * std::max(0., s[i].gap - clearance);
+                ++n_closed;
+              }
+          }
+      }
+    U.compress(VectorOperation::insert);
+    return Utilities::MPI::sum(n_closed, comm);
+  }
+
+  template <int dim>
   std::vector<ContactPairFields<dim>>
   Contact<dim>::nodal_fields(const VectorType &U, const double t)
   {
