@@ -475,8 +475,8 @@ namespace glide
           if (const unsigned int n = contact.close_touching_nodes(U_trial))
             pcout << "  initial active set: " << n
                   << " slave node(s) within 1 % of their facet size of the "
-                     "master start closed (no node of their pair was in "
-                     "contact)"
+                     "master start closed (their pair carried no force "
+                     "yet)"
                   << std::endl;
         const auto result = solve_step(U_trial);
         if (!result.converged)

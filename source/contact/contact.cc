@@ -650,11 +650,13 @@ namespace glide
           continue;
         const auto s = constraints(pair, U);
         const auto f = forces(pair, s, U);
-        bool       any_closed =
+        // A pair that carries a force already keeps its active set (that
+        // of the last converged step).
+        const bool loaded =
           std::any_of(f.begin(), f.end(), [](const auto &x) {
-            return x.closed;
+            return x.lambda > 0.;
           });
-        if (Utilities::MPI::max(any_closed ? 1 : 0, comm) > 0)
+        if (Utilities::MPI::max(loaded ? 1 : 0, comm) > 0)
           continue;
         for (unsigned int i = 0; i < s.size(); ++i)
           {
