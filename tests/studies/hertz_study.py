@@ -51,6 +51,25 @@ def l2_error(xs, ps):
     return math.sqrt(err) / math.sqrt(4.0 / 3.0 * A * P0 ** 2)
 
 
+def zigzag_of(xs, ps):
+    """Node-to-node zigzag of the nodal pressures in the central half of
+    the contact zone, |x| <= a/2: the largest deviation of p_i from the
+    straight line through its neighbours, less that of the Hertz profile
+    (whose curvature alone gives such a deviation on coarse meshes), over
+    p0."""
+    def bend(x0, x1, x2, p0_, p1, p2):
+        return p1 - (p0_ + (p2 - p0_) * (x1 - x0) / (x2 - x0))
+    worst = float("nan")
+    if sum(1 for x in xs if abs(x) <= 0.5 * A) < 3:
+        return worst  # the central half holds fewer than 3 nodes: not resolved
+    for i in range(1, len(xs) - 1):
+        if abs(xs[i]) <= 0.5 * A:
+            d = bend(xs[i - 1], xs[i], xs[i + 1], ps[i - 1], ps[i], ps[i + 1]) - \
+                bend(xs[i - 1], xs[i], xs[i + 1], exact(xs[i - 1]), exact(xs[i]), exact(xs[i + 1]))
+            worst = abs(d) / P0 if math.isnan(worst) else max(worst, abs(d) / P0)
+    return worst
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--glide", required=True)
@@ -64,6 +83,17 @@ def main():
                          "the block is refined with the cylinder (two levels fewer)")
     ap.add_argument("--smoothing", help="override the pair's 'Smoothing fraction'")
     ap.add_argument("--sliding", help="override the pair's 'Sliding' (finite or small)")
+    ap.add_argument("--set", action="append", default=[], dest="sets",
+                    help="further parameter override 'path=value' (repeatable), e.g. the formulation")
+    ap.add_argument("--p0-tolerance", type=float, default=0.02, help="|p0_h/p0 - 1| allowed on the finest mesh")
+    ap.add_argument("--a-tolerance", type=float, default=0.03, help="|a_h/a - 1| allowed on the finest mesh")
+    ap.add_argument("--max-zigzag", type=float,
+                    help="if given: largest node-to-node zigzag of the pressure allowed in the central half "
+                         "of the contact zone on every mesh, |p_i - (p_i-1 + p_i+1)/2| / p0")
+    ap.add_argument("--resolved-only", action="store_true",
+                    help="apply --max-iterations only to meshes on which the first load step's contact "
+                         "half-width (a/2 at a quarter of the load) is at least one slave facet h; on "
+                         "coarser ones require convergence without cut-back and print the count")
     ap.add_argument("--max-iterations", type=int, default=15,
                     help="bar for the Newton iterations of every load step")
     ap.add_argument("--keep-going", action="store_true",
@@ -88,6 +118,8 @@ def main():
             cmd += ["--set", f"Contact pair hertz/Smoothing fraction={a.smoothing}"]
         if a.sliding is not None:
             cmd += ["--set", f"Contact pair hertz/Sliding={a.sliding}"]
+        for extra in a.sets:
+            cmd += ["--set", extra]
         run = subprocess.run(cmd, capture_output=True, text=True)
         if run.returncode != 0 and a.keep_going:
             print(f"level {level} failed: {(run.stdout + run.stderr).strip().splitlines()[-1]}")
@@ -112,7 +144,9 @@ def main():
         with open(os.path.join(out, "timings.csv")) as f:
             t = {r["quantity"]: float(r["value"]) if r["quantity"] not in ("linear_solver",) else 0
                  for r in csv.DictReader(f)}
+        zigzag = zigzag_of(xs, ps)
         rows.append(dict(level=level, h=h, dofs=int(stats[-1]["dofs"]), a_ratio=a_h / A, p0_ratio=max(ps) / P0,
+                         zigzag=zigzag,
                          l2=l2_error(xs, ps), its=[int(s["kinsol_iterations"]) for s in stats],
                          cutbacks=int(stats[-1]["cut_backs"]), time=t["total_wall_time"],
                          memory=t["peak_memory_mib"]))
@@ -125,11 +159,12 @@ def main():
     if not rows:
         sys.exit("every level failed")
     print(f"{'level':>5} {'h':>9} {'DoFs':>7} {'a_h/a':>8} {'p0_h/p0':>8} {'L2 rel':>9} {'rate':>5} "
-          f"{'its/step':>12} {'time':>6} {'MiB':>6}")
+          f"{'zigzag':>7} {'its/step':>12} {'time':>6} {'MiB':>6}")
     for i, r in enumerate(rows):
         rate = "" if i == 0 else f"{math.log(rows[i-1]['l2'] / r['l2']) / math.log(rows[i-1]['h'] / r['h']):5.2f}"
         print(f"{r['level']:5d} {r['h']:9.2e} {r['dofs']:7d} {r['a_ratio']:8.4f} {r['p0_ratio']:8.4f} "
-              f"{r['l2']:9.3e} {rate:>5} {str(r['its']):>12} {r['time']:6.2f} {r['memory']:6.0f}")
+              f"{r['l2']:9.3e} {rate:>5} {100 * r['zigzag']:6.2f}% {str(r['its']):>12} {r['time']:6.2f} "
+              f"{r['memory']:6.0f}")
     xs = [math.log(r["h"]) for r in rows]
     ys = [math.log(r["l2"]) for r in rows]
     mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
@@ -140,16 +175,25 @@ def main():
     if a.table:
         with open(a.table, "w") as f:
             w = csv.writer(f)
-            w.writerow(["level", "h", "dofs", "a_ratio", "p0_ratio", "l2_rel", "max_its", "mean_its", "time_s", "memory_mib"])
+            w.writerow(["level", "h", "dofs", "a_ratio", "p0_ratio", "l2_rel", "max_its", "mean_its", "time_s",
+                        "memory_mib", "zigzag"])
             for r in rows:
                 w.writerow([r["level"], r["h"], r["dofs"], r["a_ratio"], r["p0_ratio"], r["l2"], max(r["its"]),
-                            sum(r["its"]) / len(r["its"]), r["time"], r["memory"]])
+                            sum(r["its"]) / len(r["its"]), r["time"], r["memory"], r["zigzag"]])
     ok = True
-    for cond, msg in [(abs(fin["p0_ratio"] - 1) <= 0.02, "p0 within 2 %"),
-                      (abs(fin["a_ratio"] - 1) <= 0.03, "a within 3 %"),
+    checks = [(abs(fin["p0_ratio"] - 1) <= a.p0_tolerance, f"p0 within {100 * a.p0_tolerance:g} %"),
+              (abs(fin["a_ratio"] - 1) <= a.a_tolerance, f"a within {100 * a.a_tolerance:g} %")]
+    if a.max_zigzag is not None:
+        resolved = [r["zigzag"] for r in rows if not math.isnan(r["zigzag"])]
+        checks.append((len(resolved) >= 3 and all(z <= a.max_zigzag for z in resolved),
+                       f"zigzag at most {100 * a.max_zigzag:g} % on every mesh with at least 3 nodes in "
+                       f"the central half ({len(resolved)} meshes)"))
+    for cond, msg in checks + [
                       (rate >= 0.7, "fitted L2 rate >= 0.7"),
-                      (all(max(r["its"]) <= a.max_iterations and r["cutbacks"] == 0 for r in rows),
-                       f"every step converges without cut-back in <= {a.max_iterations} iterations")]:
+                      (all(r["cutbacks"] == 0 and (max(r["its"]) <= a.max_iterations or
+                                                   (a.resolved_only and 0.5 * A < r["h"])) for r in rows),
+                       f"every step converges without cut-back in <= {a.max_iterations} iterations"
+                       + (" (on meshes that resolve the first step's contact zone)" if a.resolved_only else ""))]:
         print(("ok:   " if cond else "FAIL: ") + msg)
         ok = ok and cond
     print("PASSED" if ok else "FAILED")
