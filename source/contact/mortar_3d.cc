@@ -139,7 +139,7 @@ namespace glide
     /// projections onto the slave facet's auxiliary plane overlap; on
     /// values (the test that compute_3d() makes before integrating).
     bool
-    facing_overlap(const Corners &X, const Corners &Y)
+    facing_overlap(const Corners &X, const Corners &Y, bool *convex = nullptr)
     {
       namespace mg = mortar_geometry;
       std::array<double, 4> N;
@@ -157,9 +157,173 @@ namespace glide
           Ps[v] = mg::to_plane(plane, X[v]);
           Pm[v] = mg::to_plane(plane, Y[v]);
         }
-      return !mg::clip(mg::quadrilateral_polygon(Ps),
-                       mg::quadrilateral_polygon(Pm))
-                .empty();
+      const auto master = mg::quadrilateral_polygon(Pm);
+      if (convex != nullptr)
+        *convex = mg::is_convex(master);
+      return !mg::clip(mg::quadrilateral_polygon(Ps), master).empty();
+    }
+
+    /// The integrals over the overlap of one slave facet (corners @p X,
+    /// nodal normals @p n) with one master facet (corners @p Y) that the
+    /// terms of compute_3d() are made of (k, l: slave nodes; m: master
+    /// nodes of the pair):
+    /// D_k = int N_k dA, MS_kl = int N_k N_l dA, G_k = int N_k g dA,
+    /// MM_km = int N_k N^m_m dA.
+    template <typename S>
+    struct PairMoments
+    {
+      std::array<S, 4>                D, G;
+      std::array<std::array<S, 4>, 4> MS, MM;
+      /// An inverse map that did not converge, or a degenerate point.
+      bool failed = false;
+    };
+
+    /// PairMoments of a slave facet and a master facet that face each
+    /// other and overlap (facing_overlap()), the master's projection being
+    /// convex. In the scalar type S; the decisions on values.
+    template <typename S>
+    void
+    pair_moments(const std::array<std::array<S, 3>, 4> &X,
+                 const std::array<std::array<S, 3>, 4> &n,
+                 const std::array<std::array<S, 3>, 4> &Y,
+                 PairMoments<S>                        &r)
+    {
+      namespace mg = mortar_geometry;
+      using V      = std::array<S, 3>;
+      using P2     = mg::Point2D<S>;
+      for (unsigned int k = 0; k < 4; ++k)
+        {
+          r.D[k] = r.G[k] = 0.;
+          for (unsigned int l = 0; l < 4; ++l)
+            r.MS[k][l] = r.MM[k][l] = 0.;
+        }
+      // The auxiliary plane: through the centre, normal to the facet
+      // there.
+      std::array<S, 4> N;
+      V                centre, a1, a2;
+      facet_point(X, std::array<S, 2>{{S(0.5), S(0.5)}}, N, centre, a1, a2);
+      const auto        plane = mg::make_plane(centre, unit3(cross3(a1, a2)));
+      std::array<P2, 4> Ps, Pm;
+      for (unsigned int v = 0; v < 4; ++v)
+        {
+          Ps[v] = mg::to_plane(plane, X[v]);
+          Pm[v] = mg::to_plane(plane, Y[v]);
+        }
+      const mg::Polygon<S> overlap =
+        mg::clip(mg::quadrilateral_polygon(Ps), mg::quadrilateral_polygon(Pm));
+      const auto converged = [](const mg::InverseMapStatus s) {
+        return s == mg::InverseMapStatus::inside ||
+               s == mg::InverseMapStatus::outside;
+      };
+      for (const auto &q : mg::quadrature(overlap))
+        {
+          const auto is = mg::inverse_bilinear_map(Ps, q.point);
+          const auto im = mg::inverse_bilinear_map(Pm, q.point);
+          if (!converged(is.status) || !converged(im.status))
+            {
+              r.failed = true;
+              continue;
+            }
+          std::array<S, 4> Ns, Nm, Nxi, Neta;
+          V                x, y, b1, b2;
+          facet_point(X, is.xi, Ns, x, a1, a2);
+          facet_point(Y, im.xi, Nm, y, b1, b2);
+          V nn{{S(0.), S(0.), S(0.)}};
+          for (unsigned int k = 0; k < 4; ++k)
+            for (unsigned int d = 0; d < 3; ++d)
+              nn[d] += Ns[k] * n[k][d];
+          nn = unit3(nn);
+          // Area element of the slave facet and of its projection in the
+          // plane at xi_s.
+          const auto area = cross3(a1, a2);
+          using std::sqrt;
+          const S da =
+            sqrt(area[0] * area[0] + area[1] * area[1] + area[2] * area[2]);
+          bilinear(is.xi, N, Nxi, Neta);
+          P2 p1{{S(0.), S(0.)}}, p2{{S(0.), S(0.)}};
+          for (unsigned int k = 0; k < 4; ++k)
+            for (unsigned int d = 0; d < 2; ++d)
+              {
+                p1[d] += Nxi[k] * Ps[k][d];
+                p2[d] += Neta[k] * Ps[k][d];
+              }
+          S dp = p1[0] * p2[1] - p1[1] * p2[0];
+          if (value(dp) < 0.)
+            dp = -dp;
+          if (!(value(dp) > 0.))
+            {
+              r.failed = true;
+              continue;
+            }
+          const S wJ  = q.weight * da / dp;
+          const S gap = nn[0] * (y[0] - x[0]) + nn[1] * (y[1] - x[1]) +
+                        nn[2] * (y[2] - x[2]);
+          for (unsigned int k = 0; k < 4; ++k)
+            {
+              const S Nw = Ns[k] * wJ;
+              r.D[k] += Nw;
+              r.G[k] += Nw * gap;
+              for (unsigned int l = 0; l < 4; ++l)
+                {
+                  r.MS[k][l] += Nw * Ns[l];
+                  r.MM[k][l] += Nw * Nm[l];
+                }
+            }
+        }
+    }
+
+    /// pair_moments() in T. For T = double directly; for a Fad T the
+    /// moments are computed with a fixed-size Fad in the 36 coordinates of
+    /// X, n and Y only, and their derivatives carried over to T by the
+    /// chain rule (the same derivatives, at a fraction of the cost of
+    /// differentiating every quadrature point with respect to all the
+    /// patch's coordinates).
+    template <typename T>
+    void
+    pair_moments_in(const std::array<std::array<T, 3>, 4> &X,
+                    const std::array<std::array<T, 3>, 4> &n,
+                    const std::array<std::array<T, 3>, 4> &Y,
+                    PairMoments<T>                        &r)
+    {
+      if constexpr (std::is_same_v<T, double>)
+        pair_moments(X, n, Y, r);
+      else
+        {
+          using L = Sacado::Fad::SFad<double, 36>;
+          std::array<std::array<L, 3>, 4> Xl, nl, Yl;
+          std::array<const T *, 36>       in;
+          for (unsigned int v = 0; v < 4; ++v)
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                const unsigned int i = 3 * v + d;
+                Xl[v][d]             = L(36, i, value(X[v][d]));
+                nl[v][d]             = L(36, 12 + i, value(n[v][d]));
+                Yl[v][d]             = L(36, 24 + i, value(Y[v][d]));
+                in[i]                = &X[v][d];
+                in[12 + i]           = &n[v][d];
+                in[24 + i]           = &Y[v][d];
+              }
+          PairMoments<L> local;
+          pair_moments(Xl, nl, Yl, local);
+          r.failed        = local.failed;
+          const auto lift = [&in](const L &a) {
+            T b = a.val();
+            for (unsigned int i = 0; i < 36; ++i)
+              if (a.dx(i) != 0.)
+                b += a.dx(i) * (*in[i] - value(*in[i]));
+            return b;
+          };
+          for (unsigned int k = 0; k < 4; ++k)
+            {
+              r.D[k] = lift(local.D[k]);
+              r.G[k] = lift(local.G[k]);
+              for (unsigned int l = 0; l < 4; ++l)
+                {
+                  r.MS[k][l] = lift(local.MS[k][l]);
+                  r.MM[k][l] = lift(local.MM[k][l]);
+                }
+            }
+        }
     }
   } // namespace
 
@@ -204,7 +368,6 @@ namespace glide
     static_assert(dim == 3, "compute_3d() is the 3D part of compute()");
     namespace mg          = mortar_geometry;
     using V               = std::array<T, 3>;
-    using P2              = mg::Point2D<T>;
     const auto &s_facets  = slave->get_facets();
     const auto &m_facets  = this->surface->get_facets();
     const auto &symmetric = slave->get_symmetry_flags();
@@ -263,166 +426,83 @@ namespace glide
     };
     t.normal = nodal_normal(p.slave[0]);
 
-    struct Point_
-    {
-      std::array<T, 4> N, Nm;
-      T                wJ, gap;
-      unsigned int     master_facet;
-    };
-    const auto plane_values = [](const std::array<P2, 4> &P) {
-      std::array<mg::Point2D<double>, 4> v;
-      for (unsigned int i = 0; i < 4; ++i)
-        v[i] = value(P[i]);
-      return v;
-    };
     for (const unsigned int f : p.facets)
       {
         const auto       X = slave_corners(f);
         std::array<V, 4> n;
+        Corners          Xd;
         for (unsigned int v = 0; v < 4; ++v)
-          n[v] = nodal_normal(s_facets[f].nodes[v]);
-        // The auxiliary plane: through the centre, normal to the facet
-        // there.
-        V centre;
-        for (unsigned int d = 0; d < 3; ++d)
-          centre[d] = 0.25 * (X[0][d] + X[1][d] + X[2][d] + X[3][d]);
-        const V centre_normal =
-          facet_normal(X, std::array<T, 2>{{T(0.5), T(0.5)}});
-        const auto        plane = mg::make_plane(centre, centre_normal);
-        std::array<P2, 4> Ps;
-        for (unsigned int v = 0; v < 4; ++v)
-          Ps[v] = mg::to_plane(plane, X[v]);
-        const mg::Polygon<T> slave_polygon = mg::quadrilateral_polygon(Ps);
-        const auto           slave_polygon_d =
-          mg::quadrilateral_polygon(plane_values(Ps));
-        const auto normal_d = value(centre_normal);
-
-        std::vector<Point_> points;
+          {
+            n[v]  = nodal_normal(s_facets[f].nodes[v]);
+            Xd[v] = value(X[v]);
+          }
+        // Sums over the master facets of the moments (pair_moments()).
+        std::array<T, 4>            D, G;
+        std::vector<std::vector<T>> MS(4, std::vector<T>(4));
+        std::vector<std::pair<unsigned int, PairMoments<T>>> pairs;
+        for (unsigned int k = 0; k < 4; ++k)
+          {
+            D[k] = G[k] = 0.;
+            for (unsigned int l = 0; l < 4; ++l)
+              MS[k][l] = 0.;
+          }
         for (const unsigned int c : p.candidates[index_of(p.facets, f)])
           {
             std::array<V, 4> Y;
+            Corners          Yd;
             for (unsigned int v = 0; v < 4; ++v)
-              Y[v] = xm[master_index(m_facets[c].nodes[v])];
-            // Only master facets that face the slave facet (normals
-            // opposed at the centres).
-            {
-              std::array<std::array<double, 3>, 4> Yd;
-              for (unsigned int v = 0; v < 4; ++v)
+              {
+                Y[v]  = xm[master_index(m_facets[c].nodes[v])];
                 Yd[v] = value(Y[v]);
-              std::array<double, 4> N;
-              std::array<double, 3> y, b1, b2;
-              facet_point(Yd, {{0.5, 0.5}}, N, y, b1, b2);
-              const auto m = cross3(b1, b2);
-              if (m[0] * normal_d[0] + m[1] * normal_d[1] +
-                    m[2] * normal_d[2] >=
-                  0.)
-                continue;
-            }
-            std::array<P2, 4> Pm;
-            for (unsigned int v = 0; v < 4; ++v)
-              Pm[v] = mg::to_plane(plane, Y[v]);
-            // Overlap on the values first (cheap), then, if there is one
-            // and T carries derivatives, in T.
-            const auto master_polygon_d =
-              mg::quadrilateral_polygon(plane_values(Pm));
-            const auto overlap_d = mg::clip(slave_polygon_d, master_polygon_d);
-            if (overlap_d.empty())
+              }
+            // Only master facets that face the slave facet and overlap it
+            // in the plane (decided on the values).
+            bool convex = false;
+            if (!facing_overlap(Xd, Yd, &convex))
               continue;
             // clip() needs a convex master: a master facet whose
             // projection is not convex (strongly warped, or seen edge-on)
             // is not integrated.
-            if (!mg::is_convex(master_polygon_d))
+            if (!convex)
               {
                 t.failed = true;
                 continue;
               }
-            mg::Polygon<T> overlap;
-            if constexpr (std::is_same_v<T, double>)
-              overlap = overlap_d;
-            else
-              overlap = mg::clip(slave_polygon, mg::quadrilateral_polygon(Pm));
-            if (overlap.empty())
-              continue;
-            for (const auto &q : mg::quadrature(overlap))
+            pairs.emplace_back(c, PairMoments<T>());
+            auto &r = pairs.back().second;
+            pair_moments_in(X, n, Y, r);
+            t.failed = t.failed || r.failed;
+            for (unsigned int k = 0; k < 4; ++k)
               {
-                const auto is        = mg::inverse_bilinear_map(Ps, q.point);
-                const auto im        = mg::inverse_bilinear_map(Pm, q.point);
-                const auto converged = [](const mg::InverseMapStatus s) {
-                  return s == mg::InverseMapStatus::inside ||
-                         s == mg::InverseMapStatus::outside;
-                };
-                if (!converged(is.status) || !converged(im.status))
-                  {
-                    t.failed = true;
-                    continue;
-                  }
-                Point_ r;
-                V      x, a1, a2, y, b1, b2;
-                facet_point(X, is.xi, r.N, x, a1, a2);
-                facet_point(Y, im.xi, r.Nm, y, b1, b2);
-                V nn{{T(0.), T(0.), T(0.)}};
-                for (unsigned int k = 0; k < 4; ++k)
-                  for (unsigned int d = 0; d < 3; ++d)
-                    nn[d] += r.N[k] * n[k][d];
-                nn = unit3(nn);
-                // Area element of the slave facet and of its projection
-                // in the plane at xi_s.
-                const auto area = cross3(a1, a2);
-                using std::sqrt;
-                const T da = sqrt(area[0] * area[0] + area[1] * area[1] +
-                                  area[2] * area[2]);
-                std::array<T, 4> N, Ns, Nt;
-                bilinear(is.xi, N, Ns, Nt);
-                P2 p1{{T(0.), T(0.)}}, p2{{T(0.), T(0.)}};
-                for (unsigned int k = 0; k < 4; ++k)
-                  for (unsigned int d = 0; d < 2; ++d)
-                    {
-                      p1[d] += Ns[k] * Ps[k][d];
-                      p2[d] += Nt[k] * Ps[k][d];
-                    }
-                T dp = p1[0] * p2[1] - p1[1] * p2[0];
-                if (value(dp) < 0.)
-                  dp = -dp;
-                if (!(value(dp) > 0.))
-                  {
-                    t.failed = true;
-                    continue;
-                  }
-                r.wJ  = q.weight * da / dp;
-                r.gap = nn[0] * (y[0] - x[0]) + nn[1] * (y[1] - x[1]) +
-                        nn[2] * (y[2] - x[2]);
-                r.master_facet = c;
-                points.push_back(r);
+                D[k] += r.D[k];
+                G[k] += r.G[k];
+                for (unsigned int l = 0; l < 4; ++l)
+                  MS[k][l] += r.MS[k][l];
               }
           }
-        if (points.empty())
+        if (pairs.empty())
           continue;
-        // The dual basis on the covered part: A = D M^{-1} (as in 2D).
-        const unsigned int          n_s = 4;
-        std::vector<T>              D(n_s, T(0.));
-        std::vector<std::vector<T>> M(n_s, std::vector<T>(n_s, T(0.)));
-        for (const auto &q : points)
-          for (unsigned int k = 0; k < n_s; ++k)
-            {
-              D[k] += q.N[k] * q.wJ;
-              for (unsigned int l = 0; l < n_s; ++l)
-                M[k][l] += q.N[k] * q.N[l] * q.wJ;
-            }
-        if (!invert(M))
+        // The dual basis on the covered part: A = D MS^{-1} (as in 2D);
+        // Phi_j = sum_l A_l N_l, so int Phi_j g dA = sum_l A_l G_l and
+        // int Phi_j N^m dA = sum_l A_l MM_lm.
+        if (!invert(MS))
           continue;
         const unsigned int kj = index_of(s_facets[f].nodes, p.slave[0]);
-        std::vector<T>     A(n_s);
-        for (unsigned int l = 0; l < n_s; ++l)
-          A[l] = D[kj] * M[kj][l];
-        for (const auto &q : points)
+        std::array<T, 4>   A;
+        for (unsigned int l = 0; l < 4; ++l)
+          A[l] = D[kj] * MS[kj][l];
+        for (unsigned int l = 0; l < 4; ++l)
+          t.weighted_gap += A[l] * G[l];
+        for (const auto &[c, r] : pairs)
           {
-            T phi = 0.;
-            for (unsigned int l = 0; l < n_s; ++l)
-              phi += A[l] * q.N[l];
-            t.weighted_gap += phi * q.gap * q.wJ;
-            const auto &mn = m_facets[q.master_facet].nodes;
-            for (unsigned int l = 0; l < 4; ++l)
-              t.M[master_index(mn[l])] += phi * q.Nm[l] * q.wJ;
+            const auto &mn = m_facets[c].nodes;
+            for (unsigned int m = 0; m < 4; ++m)
+              {
+                T sum = 0.;
+                for (unsigned int l = 0; l < 4; ++l)
+                  sum += A[l] * r.MM[l][m];
+                t.M[master_index(mn[m])] += sum;
+              }
           }
         t.weight += D[kj];
       }

@@ -385,7 +385,7 @@ TEST(Mortar, JacobianMatchesFiniteDifferences3D)
 TEST(Mortar, DualBasisAndExactWeightedGapOnFlatSurfaces3D)
 {
   for (const auto &[n_upper, n_x, n_z] :
-       std::vector<std::array<unsigned int, 3>>{{4, 5, 5}, {3, 4, 5}})
+       std::vector<std::array<unsigned int, 3>>{{{4, 5, 5}}, {{3, 4, 5}}})
     {
       const double                  d = 0.0123;
       glide_test::ContactFixture<3> s(
