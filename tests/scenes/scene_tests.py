@@ -1569,12 +1569,18 @@ def case_mortar_patch_test_3d():
     polygons are integrated exactly (polygon rule of degree 5) and the dual
     basis is biorthogonal on the covered part, so the discrete pressure is
     uniform to round-off. Checked, roles as in the file and swapped (5 x 5
-    slave facets on the 4 x 4): every nodal CPRESS within 1e-10
-    (relative) of the mean, the mean within 1e-7 of 1e4, the contact force
-    on the slave = the support reaction to 1e-10 (R14.6), no cut-back;
-    the Newton iterations are printed (2 in 2D)."""
+    slave facets on the 4 x 4), and on 7 x 6 over 5 x 8 cells (rectangular
+    facets, no common lines): every nodal CPRESS within 1e-10 (relative)
+    of the mean, the mean within 1e-7 of 1e4, the contact force on the
+    slave = the support reaction to 1e-10 (R14.6), no cut-back; the Newton
+    iterations are printed. Finite strain (both roles): uniform (Cauchy)
+    pressure, force balance. Penalty with stiffness 1e10 per unit area:
+    uniform penetration p / 1e10 to 1e-8, force balance."""
     swapped = ["Contact pair interface/Slave=lower.top", "Contact pair interface/Master=upper.bottom"]
-    for name, sets in {"mortar_3d_4_over_5": [], "mortar_3d_swapped": swapped}.items():
+    variants = {"mortar_3d_4_over_5": [], "mortar_3d_swapped": swapped,
+                "mortar_3d_7x6_over_5x8": ["Body upper/Block/Subdivisions=7, 2, 6",
+                                           "Body lower/Block/Subdivisions=5, 2, 8"]}
+    for name, sets in variants.items():
         rows, _, out = run(scene("patch-test-3d.prm"), "Output/Write VTU=false", *sets, name=name)
         p = [n["CPRESS"] for n in contact_nodes(out, "interface")]
         mean = sum(p) / len(p)
@@ -1586,6 +1592,25 @@ def case_mortar_patch_test_3d():
         force = abs(rows[-1]["contact_interface_force_y"])
         close(force, rows[-1]["reaction_bottom_y"], 1e-10, f"{name}: contact force = support reaction")
         check(rows[-1]["cut_backs"] == 0, f"{name}: no cut-back")
+    for name, sets in {"mortar_3d_finite_strain": [], "mortar_3d_finite_strain_swapped": swapped}.items():
+        rows, _, out = run(scene("patch-test-3d.prm"), "Output/Write VTU=false",
+                           "Discretization/Geometric nonlinearity=true", *sets, name=name)
+        p = [n["CPRESS"] for n in contact_nodes(out, "interface")]
+        mean = sum(p) / len(p)
+        spread = max(abs(x / mean - 1) for x in p)
+        check(spread <= 1e-10, f"{name}: uniform pressure (largest relative deviation {spread:.2e})")
+        close(abs(rows[-1]["contact_interface_force_y"]), rows[-1]["reaction_bottom_y"], 1e-10,
+              f"{name}: contact force = support reaction")
+    rows, _, out = run(scene("patch-test-3d.prm"), "Output/Write VTU=false",
+                       "Contact pair interface/Enforcement=penalty", "Contact pair interface/Penalty stiffness=1e10",
+                       name="mortar_3d_penalty")
+    gaps = [n["COPEN"] for n in contact_nodes(out, "interface")]
+    mean = sum(gaps) / len(gaps)
+    spread = max(abs(g / mean - 1) for g in gaps)
+    check(mean < 0 and spread <= 1e-8, f"penalty: uniform penetration {mean:.6g} (largest relative deviation {spread:.2e})")
+    close(-mean, rows[-1]["reaction_bottom_y"] / 1e10, 1e-8, "penalty: penetration = pressure / stiffness")
+    close(abs(rows[-1]["contact_interface_force_y"]), rows[-1]["reaction_bottom_y"], 1e-10,
+          "penalty: contact force = support reaction")
 
 
 def case_mortar_hertz_3d():
