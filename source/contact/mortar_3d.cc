@@ -354,8 +354,9 @@ namespace glide
    *   integrands of a flat interface are exact; curved (warped) facets are
    *   integrated approximately, through the planar projection, as in Popp
    *   et al.
-   * - the consistent dual basis on the covered part and the accumulation
-   *   of D_jj, g~_j and M_jm are those of the 2D compute().
+   * - the integrals are collected per pair of slave and master facet
+   *   (pair_moments()); the consistent dual basis on the covered part and
+   *   D_jj, g~_j and M_jm follow from them as in the 2D compute().
    */
   template <int dim>
   template <typename T>
@@ -366,7 +367,6 @@ namespace glide
                           Terms<T>                              &t) const
   {
     static_assert(dim == 3, "compute_3d() is the 3D part of compute()");
-    namespace mg          = mortar_geometry;
     using V               = std::array<T, 3>;
     const auto &s_facets  = slave->get_facets();
     const auto &m_facets  = this->surface->get_facets();
@@ -396,7 +396,7 @@ namespace glide
     // Nodal normals of the patch's slave nodes, computed when needed.
     std::vector<V>    nodal(p.slave.size());
     std::vector<bool> have(p.slave.size(), false);
-    const auto        nodal_normal = [&](const unsigned int k) -> const V        &{
+    const auto        nodal_normal = [&](const unsigned int k) -> V {
       const unsigned int a = index_of(p.slave, k);
       if (!have[a])
         {
@@ -404,10 +404,10 @@ namespace glide
           bool boundary = false;
           for (const auto f : facets_at[k])
             {
-              const unsigned int v = index_of(s_facets[f].nodes, k);
-              const auto         m = facet_normal(slave_corners(f),
-                                          std::array<T, 2>{{T(double(v % 2)),
-                                                                    T(double(v / 2))}});
+              const unsigned int     v = index_of(s_facets[f].nodes, k);
+              const std::array<T, 2> corner{
+                {T(double(v % 2)), T(double(v / 2))}};
+              const auto m = facet_normal(slave_corners(f), corner);
               for (unsigned int d = 0; d < 3; ++d)
                 n[d] += m[d];
               for (unsigned int e = 0; e < 4; ++e)
