@@ -61,9 +61,10 @@ namespace glide
       "slave nodes around it, anchored where that region, projected along "
       "the slave normal, lands on the master (R9); falls back to node to "
       "surface per constraint where that is not possible, and the log "
-      "counts those. mortar (finite sliding, 2D so far, master surface of "
-      "a body): the gap is enforced in a weighted-integral sense over the "
-      "slave surface with dual multipliers (R14, doc/theory/mortar.md); "
+      "counts those. mortar (finite sliding, master surface of a body; 2D "
+      "of degree 1 and 2, 3D of degree 1): the gap is enforced in a "
+      "weighted-integral sense over the slave surface with dual "
+      "multipliers (R14, doc/theory/mortar.md); "
       "passes the contact patch test; integrates over the master facets as "
       "meshed, so 'Smoothing fraction' does not apply.");
     prm.declare_entry(
@@ -260,10 +261,6 @@ namespace glide
               "master surface of a body (deformable or meshed rigid), not "
               "the analytical '" + master +
               "'; use 'Formulation = node to surface' with it.");
-    require(formulation != "mortar" || dim == 2,
-            "Contact pair '" + name +
-              "': 'Formulation = mortar' is available in 2D (plane strain, "
-              "axisymmetric) so far; use 'node to surface' in 3D.");
     prm.enter_subsection("Rigid master");
     point        = read_point(prm, "Point", dim, path + "/Rigid master");
     normal       = read_point(prm, "Normal", dim, path + "/Rigid master");

@@ -154,11 +154,15 @@ namespace glide
         p.formulation == "surface to surface");
     if (name == "mortar, finite sliding")
       {
-        require(dim == 2,
+        // R14.7: in 3D the facets are bilinear quadrilaterals; the dual
+        // basis of serendipity or biquadratic quadrilaterals is not
+        // implemented.
+        require(dim == 2 || context.scene.degree == 1,
                 "Parameter '" + context.path +
-                  "/Formulation' = 'mortar': mortar contact is available in "
-                  "2D (plane strain, axisymmetric) so far; use 'node to "
-                  "surface' in 3D.");
+                  "/Formulation' = 'mortar': mortar in 3D needs Element "
+                  "degree = 1; the dual basis of quadratic quadrilateral "
+                  "facets is not implemented. Use 'Element degree = 1' or "
+                  "'Formulation = node to surface'.");
         require(surface != nullptr,
                 "Parameter '" + context.path +
                   "/Formulation' = 'mortar' needs a master surface of a body "

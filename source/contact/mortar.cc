@@ -314,6 +314,19 @@ namespace glide
     for (const auto f : p.facets)
       {
         p.candidates.push_back(candidates(f, radius[f]));
+        // 3D: only the candidates that overlap the slave facet (so that
+        // the linearization differentiates with respect to their nodes
+        // only; the others contribute nothing).
+        if constexpr (dim == 3)
+          {
+            auto &c = p.candidates.back();
+            c.erase(std::remove_if(c.begin(),
+                                   c.end(),
+                                   [&](const unsigned int m) {
+                                     return !overlaps_3d(f, m);
+                                   }),
+                    c.end());
+          }
         for (const auto c : p.candidates.back())
           for (const auto m : this->surface->get_facets()[c].nodes)
             master.push_back(m);

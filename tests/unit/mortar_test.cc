@@ -224,3 +224,227 @@ TEST(Mortar, RefusedWhereItDoesNotApply)
                 "set Master = rigid plane");
   refused(rigid, "master surface of a body");
 }
+
+// ---------------------------------------------------------------------------
+// 3D (R14.2 polygon clipping, R14.4 linearization; Popp, Gitterle, Gee and
+// Wall 2010). Why the expected answers are right: as in 2D above. The
+// Jacobian must be the derivative of the residual whatever the geometry
+// (the clip polygons, auxiliary planes, projections, normals and dual
+// basis are all differentiated), so it is checked against central
+// differences on a curved master and on a curved (warped) slave, on flat
+// non-matching blocks with the slave overhanging the master, and with
+// symmetry planes at the slave's boundary. On flat parallel surfaces the
+// auxiliary plane is the slave facet's plane, the area ratio is one and
+// the integrands are polynomials of degree <= 5 in the plane on
+// rectangular facets, so D_jj, M_jm and the weighted gap are exact.
+namespace
+{
+  /// Two stacked blocks in 3D: the upper one [x0, x1] x [gap, gap + 0.5] x
+  /// [z0, z1] (its bottom the slave, n_upper x n_upper cells across) on the
+  /// lower one [0, 1] x [-1, 0] x [0, 1] (its top the master, n_lower_x x
+  /// n_lower_z cells across).
+  std::string
+  stacked_blocks_3d(const double       x0,
+                    const double       x1,
+                    const double       z0,
+                    const double       z1,
+                    const double       gap,
+                    const unsigned int n_upper,
+                    const unsigned int n_lower_x,
+                    const unsigned int n_lower_z,
+                    const std::string &pair)
+  {
+    std::ostringstream s;
+    s << "set Dimension = 3\nset Analysis type = 3d\n"
+      << "set Bodies = lower, upper\nset Boundary conditions = hold\n"
+      << "set Contact pairs = pair\n"
+      << "subsection Body lower\n  subsection Block\n"
+      << "    set Lower corner = 0, -1, 0\n    set Upper corner = 1, 0, 1\n"
+      << "    set Subdivisions = " << n_lower_x << ", 1, " << n_lower_z
+      << "\n  end\nend\n"
+      << "subsection Body upper\n  subsection Block\n"
+      << "    set Lower corner = " << x0 << ", " << gap << ", " << z0
+      << "\n    set Upper corner = " << x1 << ", " << gap + 0.5 << ", " << z1
+      << "\n    set Subdivisions = " << n_upper << ", 1, " << n_upper
+      << "\n  end\nend\n"
+      << "subsection Boundary condition hold\n  set Surface = lower.bottom\n"
+      << "  set Type = fixed\nend\n"
+      << "subsection Contact pair pair\n  set Slave = upper.bottom\n"
+      << "  set Master = lower.top\n  set Formulation = mortar\n"
+      << pair << "end\n";
+    return s.str();
+  }
+
+  /// The sphere octant (hertz mesh, radius 1, coarse: curved, warped
+  /// facets) dipping 0.05 into a block [0, 1]^3; @p ball_slave makes the
+  /// sphere's curved surface the slave; @p symmetry puts XSYMM and ZSYMM on
+  /// the block's sides x = 0 and z = 0 (the slave's boundary nodes there
+  /// then carry them: nodal normals projected into the symmetry planes).
+  std::string
+  ball_on_block_3d(const bool         ball_slave,
+                   const bool         symmetry,
+                   const std::string &enforcement)
+  {
+    std::ostringstream s;
+    s << "set Dimension = 3\nset Analysis type = 3d\n"
+      << "set Bodies = block, ball\n"
+      << "set Boundary conditions = hold, top" << (symmetry ? ", sx, sz" : "")
+      << "\nset Contact pairs = pair\n"
+      << "subsection Body block\n  subsection Block\n"
+      << "    set Lower corner = 0, 0, 0\n    set Upper corner = 1, 1, 1\n"
+      << "    set Subdivisions = 4, 1, 4\n  end\nend\n"
+      << "subsection Body ball\n  set Mesh = hertz\n"
+      << "  subsection Round shapes\n    set Center = "
+      << (symmetry ? "0, 1.95, 0" : "0.05, 1.95, 0.05")
+      << "\n    set Radius = 1\n  end\n"
+      << "  subsection Refinement\n    set Global refinements = 1\n  end\nend\n"
+      << "subsection Boundary condition hold\n  set Surface = block.bottom\n"
+      << "  set Type = fixed\nend\n"
+      << "subsection Boundary condition top\n  set Surface = ball.flat\n"
+      << "  set Type = fixed\nend\n";
+    if (symmetry)
+      s << "subsection Boundary condition sx\n  set Surface = block.left, "
+           "ball.x0\n  set Type = XSYMM\nend\n"
+        << "subsection Boundary condition sz\n  set Surface = block.back, "
+           "ball.z0\n  set Type = ZSYMM\nend\n";
+    s << "subsection Contact pair pair\n  set Slave = "
+      << (ball_slave ? "ball.curved" : "block.top")
+      << "\n  set Master = " << (ball_slave ? "block.top" : "ball.curved")
+      << "\n  set Formulation = mortar\n  set Enforcement = " << enforcement
+      << "\nend\n";
+    return s.str();
+  }
+
+  /// As expect_exact_jacobian(), in 3D.
+  void
+  expect_exact_jacobian_3d(const std::string &text,
+                           const std::string &tag,
+                           const double       displacement)
+  {
+    glide_test::ContactFixture<3> s(text, "mortar_fd_" + tag + ".prm");
+    VectorType                    U, v;
+    glide_test::random_contact_state(
+      s.e, s.contact, U, v, 3, displacement, 0.02);
+    if (s.contact.needs_new_pattern(U))
+      s.e.setup_system(s.contact.owned_multipliers(),
+                       [&](DynamicSparsityPattern &dsp) {
+                         s.contact.add_sparsity(dsp);
+                       });
+    const auto [err, ref] =
+      glide_test::contact_jacobian_error(s.e, s.contact, U, v, 1e-7);
+    EXPECT_GT(ref, 0.) << tag;
+    EXPECT_LT(err, 1e-6 * ref) << tag;
+    const auto   stats  = s.contact.statistics(U);
+    const int    active = std::stoi(stats[0].second);
+    unsigned int n      = 0;
+    for (const auto &st : s.contact.status(U))
+      n += st.closed ? 0 : 1;
+    EXPECT_GT(active, 0) << tag << ": some nodes closed";
+    EXPECT_GT(n, 0u) << tag << ": some nodes open";
+  }
+} // namespace
+
+// R14.4 in 3D: the consistent linearization through the clipping.
+TEST(Mortar, JacobianMatchesFiniteDifferences3D)
+{
+  for (const char *enforcement : {"hard", "penalty"})
+    {
+      const std::string e(enforcement);
+      // Curved master over a flat slave.
+      expect_exact_jacobian_3d(ball_on_block_3d(false, false, e),
+                               "ball_master_3d_" + e,
+                               0.01);
+      // Curved, warped slave facets on a flat master.
+      expect_exact_jacobian_3d(ball_on_block_3d(true, false, e),
+                               "ball_slave_3d_" + e,
+                               0.01);
+      // Symmetry planes at the slave's boundary.
+      expect_exact_jacobian_3d(ball_on_block_3d(false, true, e),
+                               "ball_symmetry_3d_" + e,
+                               0.01);
+      // Flat, non-matching, the slave overhanging the master on two sides
+      // (its facets there partly or wholly outside: the nodes beyond the
+      // master's edges have no constraint and count as open).
+      expect_exact_jacobian_3d(stacked_blocks_3d(0.45,
+                                                 1.45,
+                                                 0.3,
+                                                 1.3,
+                                                 -0.005,
+                                                 3,
+                                                 4,
+                                                 3,
+                                                 "  set Enforcement = " + e +
+                                                   "\n"),
+                               "overhang_3d_" + e,
+                               0.005);
+    }
+}
+
+// R14.1, R14.2 in 3D: biorthogonality and exact integration on flat,
+// non-matching surfaces (4 x 4 over 5 x 5 and 3 x 3 over 4 x 5 cells).
+TEST(Mortar, DualBasisAndExactWeightedGapOnFlatSurfaces3D)
+{
+  for (const auto &[n_upper, n_x, n_z] :
+       std::vector<std::array<unsigned int, 3>>{{{4, 5, 5}}, {{3, 4, 5}}})
+    {
+      const double                  d = 0.0123;
+      glide_test::ContactFixture<3> s(
+        stacked_blocks_3d(0., 1., 0., 1., d, n_upper, n_x, n_z, ""),
+        "mortar_flat_3d.prm");
+      VectorType  U(s.e.locally_owned(), MPI_COMM_WORLD);
+      const auto *m =
+        dynamic_cast<const Mortar<3> *>(&s.contact.formulation_of(0));
+      ASSERT_NE(m, nullptr);
+      const auto &nodes = s.contact.slave_nodes(0);
+      m->move(U);
+      ASSERT_EQ(nodes.size(), (n_upper + 1) * (n_upper + 1));
+      double total = 0.;
+      for (unsigned int i = 0; i < nodes.size(); ++i)
+        {
+          const auto t = m->terms(i);
+          // Tributary area of a node of a uniform n x n grid on the unit
+          // square: h^2 times 1/4 per facet at the node.
+          const double h = 1. / n_upper;
+          unsigned int k = 0;
+          for (unsigned int c : {0u, 2u})
+            k += (std::abs(nodes[i].X[c]) < 1e-12 ||
+                  std::abs(nodes[i].X[c] - 1.) < 1e-12) ?
+                   1 :
+                   0;
+          const double tributary = h * h * (k == 0 ? 1. : k == 1 ? 0.5 : 0.25);
+          EXPECT_NEAR(t.weight, tributary, 1e-14) << "D_jj = int N_j dA";
+          EXPECT_NEAR(t.weight, nodes[i].area, 1e-14) << "D_jj = node area";
+          total += t.weight;
+          double sum = 0.;
+          for (const double x : t.M)
+            sum += x;
+          EXPECT_NEAR(sum, t.weight, 1e-14) << "sum_m M_jm = D_jj";
+          EXPECT_NEAR(t.weighted_gap, d * t.weight, 1e-15)
+            << "weighted gap of a uniform gap d";
+          EXPECT_NEAR(t.normal[0], 0., 1e-15);
+          EXPECT_NEAR(t.normal[1], -1., 1e-15) << "outward slave normal";
+          EXPECT_NEAR(t.normal[2], 0., 1e-15);
+        }
+      EXPECT_NEAR(total, 1., 1e-13) << "the D_jj sum to the slave's area";
+    }
+}
+
+// R14.7: degree 2 in 3D is refused (the dual basis of quadratic
+// quadrilaterals is not implemented), with a message that says so.
+TEST(Mortar, RefusedForDegree2In3D)
+{
+  std::string text = stacked_blocks_3d(0., 1., 0., 1., 0., 2, 2, 2, "");
+  text += "subsection Discretization\n  set Element degree = 2\nend\n";
+  try
+    {
+      glide_test::ContactFixture<3> s(text, "mortar_refused_3d.prm");
+      ADD_FAILURE() << "accepted: mortar of degree 2 in 3D";
+    }
+  catch (const std::exception &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("mortar in 3D needs Element degree "
+                                           "= 1"),
+                std::string::npos)
+        << e.what();
+    }
+}

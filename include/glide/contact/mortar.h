@@ -52,7 +52,10 @@ namespace glide
    *
    * Implemented for 2D (plane strain, axisymmetric) and facets of degree
    * 1 and 2 (R14.7: the dual basis of a quadratic line exists, since all
-   * its int N_k are positive). 3D is refused by make_formulation().
+   * its int N_k are positive), and for 3D with bilinear quadrilateral
+   * facets (compute_3d(), source/contact/mortar_3d.cc: clipping in the
+   * slave facet's auxiliary plane, Popp, Gitterle, Gee and Wall 2010);
+   * degree 2 in 3D is refused by make_formulation().
    */
   template <int dim>
   class Mortar : public Formulation<dim>
@@ -150,6 +153,12 @@ namespace glide
                const std::vector<std::array<T, dim>> &xs,
                const std::vector<std::array<T, dim>> &xm,
                Terms<T>                               &terms) const;
+
+    /// 3D: whether master facet @p master faces slave facet @p facet and
+    /// overlaps it in its auxiliary plane at the current positions (the
+    /// test of compute_3d(), on the values; source/contact/mortar_3d.cc).
+    bool
+    overlaps_3d(const unsigned int facet, const unsigned int master) const;
 
     /// Master facets whose current bounding box comes within @p radius of
     /// that of slave facet @p facet.
