@@ -34,6 +34,7 @@ FORMULATIONS = {
     "nts-finite-f0.2": {"Smoothing fraction": "0.2"},
     "nts-small": {"Sliding": "small"},
     "sts-small": {"Sliding": "small", "Formulation": "surface to surface"},
+    "mortar": {"Formulation": "mortar"},
 }
 
 UNITS = {"mm": (10.0, 1.0), "SI": (0.01, 1e6)}  # radius, stress unit in MPa

@@ -1,5 +1,6 @@
 #include <glide/contact/facet_basis.h>
 #include <glide/contact/mortar.h>
+#include <glide/contact/mortar_geometry.h>
 #include <glide/contact/small_sliding.h>
 #include <glide/scene/input_error.h>
 
@@ -117,46 +118,6 @@ namespace glide
         }
     }
 
-    /// Inverse of a small square matrix (Gauss-Jordan with pivoting on the
-    /// values); false if singular.
-    template <typename T>
-    bool
-    invert(std::vector<std::vector<T>> &A)
-    {
-      const unsigned int          n = A.size();
-      std::vector<std::vector<T>> B(n, std::vector<T>(n, T(0.)));
-      for (unsigned int i = 0; i < n; ++i)
-        B[i][i] = 1.;
-      for (unsigned int c = 0; c < n; ++c)
-        {
-          unsigned int r = c;
-          for (unsigned int i = c + 1; i < n; ++i)
-            if (std::abs(plain(A[i][c])) > std::abs(plain(A[r][c])))
-              r = i;
-          if (!(std::abs(plain(A[r][c])) > 0.))
-            return false;
-          std::swap(A[r], A[c]);
-          std::swap(B[r], B[c]);
-          const T pivot = A[c][c];
-          for (unsigned int j = 0; j < n; ++j)
-            {
-              A[c][j] /= pivot;
-              B[c][j] /= pivot;
-            }
-          for (unsigned int i = 0; i < n; ++i)
-            if (i != c)
-              {
-                const T factor = A[i][c];
-                for (unsigned int j = 0; j < n; ++j)
-                  {
-                    A[i][j] -= factor * A[c][j];
-                    B[i][j] -= factor * B[c][j];
-                  }
-              }
-        }
-      A = B;
-      return true;
-    }
 
     /// Index of @p k in @p list (which holds it).
     unsigned int
@@ -571,7 +532,7 @@ namespace glide
                       M[k][l] += q.N[k] * q.N[l] * q.wJ;
                   }
               }
-            if (!invert(M))
+            if (!mortar_geometry::invert_small(M))
               continue;
             const unsigned int kj = index_of(s_facets[f].nodes, p.slave[0]);
             std::vector<T>     A(n_s);

@@ -37,46 +37,6 @@ namespace glide
                a[0] * b[1] - a[1] * b[0]}};
     }
 
-    /// Inverse of a small square matrix (Gauss-Jordan with pivoting on the
-    /// values); false if singular.
-    template <typename T>
-    bool
-    invert(std::vector<std::vector<T>> &A)
-    {
-      const unsigned int          n = A.size();
-      std::vector<std::vector<T>> B(n, std::vector<T>(n, T(0.)));
-      for (unsigned int i = 0; i < n; ++i)
-        B[i][i] = 1.;
-      for (unsigned int c = 0; c < n; ++c)
-        {
-          unsigned int r = c;
-          for (unsigned int i = c + 1; i < n; ++i)
-            if (std::abs(value(A[i][c])) > std::abs(value(A[r][c])))
-              r = i;
-          if (!(std::abs(value(A[r][c])) > 0.))
-            return false;
-          std::swap(A[r], A[c]);
-          std::swap(B[r], B[c]);
-          const T pivot = A[c][c];
-          for (unsigned int j = 0; j < n; ++j)
-            {
-              A[c][j] /= pivot;
-              B[c][j] /= pivot;
-            }
-          for (unsigned int i = 0; i < n; ++i)
-            if (i != c)
-              {
-                const T factor = A[i][c];
-                for (unsigned int j = 0; j < n; ++j)
-                  {
-                    A[i][j] -= factor * A[c][j];
-                    B[i][j] -= factor * B[c][j];
-                  }
-              }
-        }
-      A = B;
-      return true;
-    }
 
     /// Index of @p k in @p list (which holds it).
     unsigned int
@@ -485,7 +445,7 @@ namespace glide
         // The dual basis on the covered part: A = D MS^{-1} (as in 2D);
         // Phi_j = sum_l A_l N_l, so int Phi_j g dA = sum_l A_l G_l and
         // int Phi_j N^m dA = sum_l A_l MM_lm.
-        if (!invert(MS))
+        if (!mortar_geometry::invert_small(MS))
           continue;
         const unsigned int kj = index_of(s_facets[f].nodes, p.slave[0]);
         std::array<T, 4>   A;

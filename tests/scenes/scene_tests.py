@@ -1173,10 +1173,23 @@ def case_robustness_matrix():
     at most 2. Units: the same scene in mm-N-MPa and SI gives iteration
     counts equal within 1 per step and the same contact force and peak
     pressure to 1e-8 (relative). Threads: 1 and 2 give the same counts."""
+    robustness_matrix_of(("nts-finite-f0.2", "nts-small", "sts-small"))
+
+
+def case_robustness_matrix_mortar():
+    """Issue 14 ("hard cases: the robustness matrix of the contact-core
+    issue, for mortar too"): case_robustness_matrix's cells, targets, units
+    and threads checks for `Formulation = mortar`."""
+    robustness_matrix_of(("mortar",))
+
+
+def robustness_matrix_of(formulations):
+    """The checks of case_robustness_matrix for the given formulations
+    (keys of robustness.FORMULATIONS)."""
     sys.path.insert(0, os.path.join(ROOT, "study"))
     import robustness
     output = tempfile.mkdtemp(prefix="glide-robustness-")
-    for formulation in ("nts-finite-f0.2", "nts-small", "sts-small"):
+    for formulation in formulations:
         for label, kw in robustness_cases():
             runs = []
             for level in (0, 1):
@@ -1201,7 +1214,7 @@ def case_robustness_matrix():
                 check(max(runs[1]["iterations"]) <= max(runs[0]["iterations"]) + 2,
                       f"{formulation}, {label}: refinement adds at most 2 iterations per step")
     # Units and threads on one cell per formulation.
-    for formulation in ("nts-finite-f0.2", "nts-small", "sts-small"):
+    for formulation in formulations:
         mm = robustness.run_case(ARGS.glide, output, f"{formulation}-mm", formulation=formulation, level=1,
                                  ratio=3.0, slave="block", threads=1)
         si = robustness.run_case(ARGS.glide, output, f"{formulation}-si", formulation=formulation, level=1,

@@ -915,5 +915,48 @@ namespace glide
                         InverseMapStatus::outside;
       return result;
     }
+
+    /// Inverse of a small square matrix @p A in place (Gauss-Jordan with
+    /// pivoting on the values; the dual basis A = D M^{-1} of a facet);
+    /// false if singular.
+    template <typename T>
+    bool
+    invert_small(std::vector<std::vector<T>> &A)
+    {
+      const unsigned int          n = A.size();
+      std::vector<std::vector<T>> B(n, std::vector<T>(n, T(0.)));
+      for (unsigned int i = 0; i < n; ++i)
+        B[i][i] = 1.;
+      for (unsigned int c = 0; c < n; ++c)
+        {
+          unsigned int r = c;
+          for (unsigned int i = c + 1; i < n; ++i)
+            if (std::abs(value(A[i][c])) > std::abs(value(A[r][c])))
+              r = i;
+          if (!(std::abs(value(A[r][c])) > 0.))
+            return false;
+          std::swap(A[r], A[c]);
+          std::swap(B[r], B[c]);
+          const T pivot = A[c][c];
+          for (unsigned int j = 0; j < n; ++j)
+            {
+              A[c][j] /= pivot;
+              B[c][j] /= pivot;
+            }
+          for (unsigned int i = 0; i < n; ++i)
+            if (i != c)
+              {
+                const T factor = A[i][c];
+                for (unsigned int j = 0; j < n; ++j)
+                  {
+                    A[i][j] -= factor * A[c][j];
+                    B[i][j] -= factor * B[c][j];
+                  }
+              }
+        }
+      A = B;
+      return true;
+    }
+
   } // namespace mortar_geometry
 } // namespace glide
