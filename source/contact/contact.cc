@@ -652,10 +652,9 @@ namespace glide
         const auto f = forces(pair, s, U);
         // A pair that carries a force already keeps its active set (that
         // of the last converged step).
-        const bool loaded =
-          std::any_of(f.begin(), f.end(), [](const auto &x) {
-            return x.lambda > 0.;
-          });
+        const bool loaded = std::any_of(f.begin(), f.end(), [](const auto &x) {
+          return x.lambda > 0.;
+        });
         if (Utilities::MPI::max(loaded ? 1 : 0, comm) > 0)
           continue;
         for (unsigned int i = 0; i < s.size(); ++i)

@@ -257,10 +257,11 @@ namespace glide
               "set 'Sliding = finite' (or use small-sliding node to surface "
               "or surface to surface).");
     require(formulation != "mortar" || master_type == MasterType::surface,
-            "Contact pair '" + name + "': 'Formulation = mortar' needs a "
+            "Contact pair '" + name +
+              "': 'Formulation = mortar' needs a "
               "master surface of a body (deformable or meshed rigid), not "
-              "the analytical '" + master +
-              "'; use 'Formulation = node to surface' with it.");
+              "the analytical '" +
+              master + "'; use 'Formulation = node to surface' with it.");
     prm.enter_subsection("Rigid master");
     point        = read_point(prm, "Point", dim, path + "/Rigid master");
     normal       = read_point(prm, "Normal", dim, path + "/Rigid master");

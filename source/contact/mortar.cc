@@ -97,12 +97,12 @@ namespace glide
     /// positions @p X at parameter @p xi (and the shape values @p N).
     template <typename T, typename S>
     void
-    line(const unsigned int                    p,
+    line(const unsigned int                   p,
          const std::vector<std::array<T, 2>> &X,
-         const S                              &xi,
-         std::array<S, 3>                     &N,
-         std::array<S, 2>                     &x,
-         std::array<S, 2>                     &a)
+         const S                             &xi,
+         std::array<S, 3>                    &N,
+         std::array<S, 2>                    &x,
+         std::array<S, 2>                    &a)
     {
       std::array<S, 3> dN;
       lagrange(p, xi, N.data(), dN.data());
@@ -168,7 +168,7 @@ namespace glide
         const auto it = by_dof.find(surface_nodes[k].dofs[0]);
         if (it != by_dof.end())
           {
-            node_of[k]                = it->second;
+            node_of[k]               = it->second;
             surface_node[it->second] = k;
           }
       }
@@ -208,9 +208,9 @@ namespace glide
     if (tree_version != this->surface->version())
       {
         // The master facets' bounding boxes at the current positions.
-        const auto        &x = this->surface->get_positions();
-        std::vector<Leaf>  boxes;
-        const auto        &facets = this->surface->get_facets();
+        const auto       &x = this->surface->get_positions();
+        std::vector<Leaf> boxes;
+        const auto       &facets = this->surface->get_facets();
         for (unsigned int f = 0; f < facets.size(); ++f)
           {
             Point<dim> lo = x[facets[f].nodes[0]], hi = lo;
@@ -232,7 +232,7 @@ namespace glide
   std::vector<unsigned int>
   Mortar<dim>::candidates(const unsigned int facet, const double r) const
   {
-    namespace bgi = boost::geometry::index;
+    namespace bgi     = boost::geometry::index;
     const auto &nodes = slave->get_facets()[facet].nodes;
     Point<dim>  lo = slave_x[nodes[0]], hi = lo;
     for (const auto k : nodes)
@@ -301,10 +301,10 @@ namespace glide
   template <int dim>
   template <typename T>
   void
-  Mortar<dim>::compute(const Patch                            &p,
+  Mortar<dim>::compute(const Patch                           &p,
                        const std::vector<std::array<T, dim>> &xs,
                        const std::vector<std::array<T, dim>> &xm,
-                       Terms<T>                               &t) const
+                       Terms<T>                              &t) const
   {
     t.master_nodes = p.master;
     t.M.assign(p.master.size(), T(0.));
@@ -312,12 +312,12 @@ namespace glide
       compute_3d(p, xs, xm, t);
     else
       {
-        using V               = std::array<T, 2>;
-        const auto &s_facets  = slave->get_facets();
-        const auto &m_facets  = this->surface->get_facets();
-        const auto &symmetric = slave->get_symmetry_flags();
+        using V                      = std::array<T, 2>;
+        const auto        &s_facets  = slave->get_facets();
+        const auto        &m_facets  = this->surface->get_facets();
+        const auto        &symmetric = slave->get_symmetry_flags();
         const unsigned int ps = slave->degree(), pm = this->surface->degree();
-        const bool axisymmetric =
+        const bool         axisymmetric =
           this->context.scene.analysis == AnalysisType::axisymmetric;
         const auto facet_positions = [&](const unsigned int f) {
           std::vector<V> X;
@@ -342,7 +342,7 @@ namespace glide
           for (const auto f : facets_at[k])
             {
               const unsigned int local = index_of(s_facets[f].nodes, k);
-              const auto         m = facet_normal(f, double(local) / ps);
+              const auto         m     = facet_normal(f, double(local) / ps);
               n[0] += m[0];
               n[1] += m[1];
             }
@@ -351,10 +351,9 @@ namespace glide
                       index_of(s_facets[facets_at[k][0]].nodes, k) == ps);
           if (end)
             for (unsigned int c = 0; c < 2; ++c)
-              if (symmetric[k][c] ||
-                  (c == 0 && axisymmetric &&
-                   std::abs(slave->get_nodes()[k].X[0]) <
-                     1e-10 * slave->facet_size()))
+              if (symmetric[k][c] || (c == 0 && axisymmetric &&
+                                      std::abs(slave->get_nodes()[k].X[0]) <
+                                        1e-10 * slave->facet_size()))
                 n[c] = 0.;
           return unit<T, 2>(n);
         };
@@ -374,8 +373,12 @@ namespace glide
             for (const auto k : s_facets[f].nodes)
               n.push_back(nodal_normal(k));
             // Slave point and (unnormalized) normal field at xi.
-            const auto field = [&](const auto &xi, auto &N, auto &x, auto &a,
-                                   auto &nn, auto &dnn) {
+            const auto field = [&](const auto &xi,
+                                   auto       &N,
+                                   auto       &x,
+                                   auto       &a,
+                                   auto       &nn,
+                                   auto       &dnn) {
               using S = std::decay_t<decltype(xi)>;
               std::array<S, 3> dN;
               lagrange(ps, xi, N.data(), dN.data());
@@ -416,8 +419,9 @@ namespace glide
                     else
                       r[d] = y[d] - x[d];
                   }
-                R  = cross(r, nn);
-                dR = cross(std::array<S, 2>{{-a[0], -a[1]}}, nn) + cross(r, dnn);
+                R = cross(r, nn);
+                dR =
+                  cross(std::array<S, 2>{{-a[0], -a[1]}}, nn) + cross(r, dnn);
               };
               // Start: the projection onto the chord.
               const double c0 = plain(X[0][0]), c1 = plain(X[0][1]);
@@ -427,8 +431,8 @@ namespace glide
                 (e0 * e0 + e1 * e1);
               return solve_1d<T>(f, start, xi);
             };
-            const double mid_normal[2] = {plain(facet_normal(f, 0.5)[0]),
-                                          plain(facet_normal(f, 0.5)[1])};
+            const double        mid_normal[2] = {plain(facet_normal(f, 0.5)[0]),
+                                                 plain(facet_normal(f, 0.5)[1])};
             std::vector<Point_> points;
             for (const unsigned int c : p.candidates[index_of(p.facets, f)])
               {
@@ -437,8 +441,8 @@ namespace glide
                   Y.push_back(xm[index_of(p.master, m)]);
                 // Only master facets that face the slave facet.
                 {
-                  std::array<double, 3> N;
-                  std::array<double, 2> y, b;
+                  std::array<double, 3>              N;
+                  std::array<double, 2>              y, b;
                   std::vector<std::array<double, 2>> Yd;
                   for (const auto &v : Y)
                     Yd.push_back({{plain(v[0]), plain(v[1])}});
@@ -462,7 +466,7 @@ namespace glide
                   continue;
                 for (unsigned int g = 0; g < gauss.size(); ++g)
                   {
-                    Point_ q;
+                    Point_  q;
                     const T xi = lo + (hi - lo) * gauss.point(g)[0];
                     V       x, a, nn, dnn;
                     field(xi, q.N, x, a, nn, dnn);
@@ -583,9 +587,9 @@ namespace glide
   Mortar<dim>::evaluate(const unsigned int i, const VectorType &U) const
   {
     Constraint<dim> s;
-    s.x     = this->position(i, U);
-    s.point = s.x;
-    const auto t = terms(i);
+    s.x              = this->position(i, U);
+    s.point          = s.x;
+    const auto     t = terms(i);
     Tensor<1, dim> n;
     for (unsigned int d = 0; d < dim; ++d)
       n[d] = t.normal[d];

@@ -153,14 +153,11 @@ TEST(Mortar, JacobianMatchesFiniteDifferences)
                             0.005);
       // Flat, non-matching, the slave's end facets partly outside the
       // master (the upper block overhangs the lower one on the right).
-      expect_exact_jacobian(stacked_blocks(0.55,
-                                           1.25,
-                                           -0.01,
-                                           5,
-                                           3,
-                                           "  set Enforcement = " + e + "\n"),
-                            "overhang_" + e,
-                            0.005);
+      expect_exact_jacobian(
+        stacked_blocks(
+          0.55, 1.25, -0.01, 5, 3, "  set Enforcement = " + e + "\n"),
+        "overhang_" + e,
+        0.005);
     }
 }
 
@@ -173,11 +170,11 @@ TEST(Mortar, DualBasisAndExactWeightedGapOnFlatSurfaces)
                                                             {7, 5},
                                                             {3, 8}})
       {
-        const double d = 0.0123;
+        const double                  d = 0.0123;
         glide_test::ContactFixture<2> s(
           stacked_blocks(0., 1., d, n_upper, n_lower, "", degree),
           "mortar_flat.prm");
-        VectorType U(s.e.locally_owned(), MPI_COMM_WORLD);
+        VectorType  U(s.e.locally_owned(), MPI_COMM_WORLD);
         const auto &m     = mortar_of(s);
         const auto &nodes = s.contact.slave_nodes(0);
         m.move(U);

@@ -160,12 +160,12 @@ namespace glide
      * slightly negative there) but carries the body alone in the first
      * iteration, which sinks into the other as if under a point load
      * (measured on parameters/hertz-2d-elastic.prm, block slave: 19
-     * iterations with a line-search retry, 5 with this). The weighted gap of the nodes next
-     * to the first contact point of two surfaces with relative curvature
-     * kappa is about kappa h^2 / 6, so 1 % of h covers them on any mesh that
-     * resolves the curvature (kappa h <= 0.06). It changes the starting
-     * point only, never the residual (R16.1); nodes closed wrongly open in
-     * the next iteration. Returns the number of nodes closed (all
+     * iterations with a line-search retry, 5 with this). The weighted gap of
+     * the nodes next to the first contact point of two surfaces with relative
+     * curvature kappa is about kappa h^2 / 6, so 1 % of h covers them on any
+     * mesh that resolves the curvature (kappa h <= 0.06). It changes the
+     * starting point only, never the residual (R16.1); nodes closed wrongly
+     * open in the next iteration. Returns the number of nodes closed (all
      * processes).
      */
     unsigned int

@@ -141,18 +141,18 @@ namespace glide
     /// p.slave) and master positions @p xm (per p.master).
     template <typename T>
     void
-    compute(const Patch                            &p,
+    compute(const Patch                           &p,
             const std::vector<std::array<T, dim>> &xs,
             const std::vector<std::array<T, dim>> &xm,
-            Terms<T>                               &terms) const;
+            Terms<T>                              &terms) const;
 
     /// compute() in 3D (source/contact/mortar_3d.cc).
     template <typename T>
     void
-    compute_3d(const Patch                            &p,
+    compute_3d(const Patch                           &p,
                const std::vector<std::array<T, dim>> &xs,
                const std::vector<std::array<T, dim>> &xm,
-               Terms<T>                               &terms) const;
+               Terms<T>                              &terms) const;
 
     /// 3D: whether master facet @p master faces slave facet @p facet and
     /// overlaps it in its auxiliary plane at the current positions (the
@@ -182,7 +182,8 @@ namespace glide
     mutable std::vector<dealii::Point<dim>> slave_x;
     using Leaf = std::pair<dealii::BoundingBox<dim>, unsigned int>;
     mutable dealii::RTree<Leaf> tree;
-    mutable std::uint64_t tree_version = std::numeric_limits<std::uint64_t>::max();
+    mutable std::uint64_t       tree_version =
+      std::numeric_limits<std::uint64_t>::max();
     /// Per node: master nodes coupled in the sparsity pattern (sorted).
     std::vector<std::vector<unsigned int>> coupled;
     /// Per node: position and mortar point sum_m (M_jm / D_jj) x_m at the
