@@ -381,6 +381,20 @@ def ironing_results(a, out):
     return results
 
 
+def replace_section(report, old, header, new):
+    """Write the report lines old with the section that starts with header
+    replaced by new (inserted before the targets if missing)."""
+    starts = [i for i, x in enumerate(old) if x.startswith(header)]
+    if starts:
+        end = next((i for i in range(starts[0] + 1, len(old)) if old[i].startswith("## ")), len(old))
+        old = old[:starts[0]] + new + old[end:]
+    else:
+        at = next(i for i, x in enumerate(old) if x.startswith("## Targets"))
+        old = old[:at] + new + old[at:]
+    with open(report, "w") as f:
+        f.write("\n".join(old))
+
+
 def kept_section(report, header):
     """The section of the existing report that starts with header (kept
     when this run does not measure it), or a note that it is missing."""
@@ -562,15 +576,7 @@ def main():
         with open(report) as f:
             old = f.read().split("\n")
         new = mortar_lines(a.doc, mortar_study(os.path.abspath(a.glide), out))
-        starts = [i for i, x in enumerate(old) if x.startswith("## Mortar against node to surface")]
-        if starts:
-            end = next((i for i in range(starts[0] + 1, len(old)) if old[i].startswith("## ")), len(old))
-            old = old[:starts[0]] + new + old[end:]
-        else:
-            at = next(i for i, x in enumerate(old) if x.startswith("## Targets"))
-            old = old[:at] + new + old[at:]
-        with open(report, "w") as f:
-            f.write("\n".join(old))
+        replace_section(report, old, "## Mortar against node to surface", new)
         print("\n".join(new))
         return
     if a.plots_only:
@@ -606,15 +612,7 @@ def main():
             old = f.read().split("\n")
         new = small_sliding_lines(small_sliding_cost(os.path.abspath(a.glide), out))
         new[2] += f" Measured on {datetime.date.today()} with `--small-sliding-only`."
-        starts = [i for i, x in enumerate(old) if x.startswith("## Small against finite sliding")]
-        if starts:
-            end = next((i for i in range(starts[0] + 1, len(old)) if old[i].startswith("## ")), len(old))
-            old = old[:starts[0]] + new + old[end:]
-        else:
-            at = next(i for i, x in enumerate(old) if x.startswith("## Targets"))
-            old = old[:at] + new + old[at:]
-        with open(report, "w") as f:
-            f.write("\n".join(old))
+        replace_section(report, old, "## Small against finite sliding", new)
         print("\n".join(new))
         return
     if a.ironing_only:

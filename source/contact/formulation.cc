@@ -5,6 +5,8 @@
 #include <glide/contact/small_sliding_formulation.h>
 #include <glide/scene/input_error.h>
 
+#include <sstream>
+
 namespace glide
 {
   using namespace dealii;
@@ -130,6 +132,26 @@ namespace glide
     for (unsigned int d = 0; d < dim; ++d)
       x[d] += U[node.dofs[d]];
     return x;
+  }
+
+  template <int dim>
+  void
+  Formulation<dim>::report_failed(const std::vector<Constraint<dim>> &s,
+                                  const std::string &what) const
+  {
+    std::vector<std::string> failed;
+    for (unsigned int i = 0; i < s.size(); ++i)
+      if (s[i].outcome == Outcome::failed)
+        {
+          std::ostringstream text;
+          text << "(" << (*nodes)[i].X << ")";
+          failed.push_back(text.str());
+        }
+    context.report(failed,
+                   "warning: contact pair '" + context.parameters.name +
+                     "': " + what + " did not converge for ",
+                   " slave node(s), which count as open in this step (node "
+                   "positions in the reference configuration)");
   }
 
   template <int dim>

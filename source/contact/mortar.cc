@@ -713,15 +713,9 @@ namespace glide
   {
     const auto &nodes = *this->nodes;
     move(U);
-    std::vector<std::string> failed;
+    this->report_failed(s, "a mortar projection");
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
-        if (s[i].outcome == Outcome::failed)
-          {
-            std::ostringstream text;
-            text << "(" << nodes[i].X << ")";
-            failed.push_back(text.str());
-          }
         // Slip (R12): the tangential motion of the node relative to its
         // mortar point sum_m (M_jm / D_jj) x_m, while closed.
         const auto  t = terms(i);
@@ -740,12 +734,6 @@ namespace glide
         previous_point[i]    = point;
         previous_found[i]    = found;
       }
-    this->context.report(
-      failed,
-      "warning: contact pair '" + this->context.parameters.name +
-        "': a mortar projection did not converge for ",
-      " slave node(s), which count as open in this step (node positions in "
-      "the reference configuration)");
   }
 
   template class Mortar<2>;

@@ -221,20 +221,7 @@ namespace glide
       {
         // R16.3: slave nodes whose closest-point projection failed to
         // converge are open at this state; name them.
-        std::vector<std::string> failed;
-        for (unsigned int i = 0; i < nodes.size(); ++i)
-          if (s[i].outcome == Outcome::failed)
-            {
-              std::ostringstream text;
-              text << "(" << nodes[i].X << ")";
-              failed.push_back(text.str());
-            }
-        this->context.report(
-          failed,
-          "warning: contact pair '" + p.name +
-            "': the projection onto the master did not converge for ",
-          " slave node(s), which count as open in this step (node positions "
-          "in the reference configuration)");
+        this->report_failed(s, "the projection onto the master");
         // How far the held gaps are from those of the free projection, and
         // the held nodes from the end of their piece.
         std::vector<std::string> held;

@@ -1345,6 +1345,19 @@ def case_patch_test_and_hard_cases():
     common(rows, 0.01 / (0.5 + 0.5e-6), "stiffness ratio 1e6")
 
 
+def write_inp(path, lines, surfaces):
+    """Write an Abaqus file: lines (nodes and elements) and, per (body,
+    name), an element set and an element-based surface of its faces."""
+    for (body, name), faces in surfaces.items():
+        lines.append(f"*ELSET, ELSET={body}_{name}_{faces[0][1]}")
+        lines += [str(e) for e, _ in faces]
+    for (body, name), faces in surfaces.items():
+        lines.append(f"*SURFACE, NAME={name}, TYPE=ELEMENT")
+        lines.append(f"{body}_{name}_{faces[0][1]}, {faces[0][1]}")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
 def perturbed_patch_inp(path, n_lower, n_upper, seed, amplitude=0.2):
     """An Abaqus file with the two blocks of parameters/patch-test.prm
     (lower [0,1] x [0,0.5] with n_lower x n_lower cells, upper [0,1] x
@@ -1385,14 +1398,7 @@ def perturbed_patch_inp(path, n_lower, n_upper, seed, amplitude=0.2):
     for body in ("LOWER", "UPPER"):
         lines.append(f"*ELEMENT, TYPE=CPE4, ELSET={body}")
         lines += [f"{e}, {a}, {b}, {c}, {d}" for bb, e, a, b, c, d in elements if bb == body]
-    for (body, name), faces in surfaces.items():
-        lines.append(f"*ELSET, ELSET={body}_{name}_{faces[0][1]}")
-        lines += [str(e) for e, _ in faces]
-    for (body, name), faces in surfaces.items():
-        lines.append(f"*SURFACE, NAME={name}, TYPE=ELEMENT")
-        lines.append(f"{body}_{name}_{faces[0][1]}, {faces[0][1]}")
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
+    write_inp(path, lines, surfaces)
 
 
 def case_mortar_patch_test():
@@ -1669,14 +1675,7 @@ def perturbed_patch_inp_3d(path, n_lower, n_upper, seed, amplitude=0.2, rectangl
     for body in ("LOWER", "UPPER"):
         lines.append(f"*ELEMENT, TYPE=C3D8, ELSET={body}")
         lines += [f"{e}, " + ", ".join(map(str, c)) for bb, e, c in elements if bb == body]
-    for (body, name), faces in surfaces.items():
-        lines.append(f"*ELSET, ELSET={body}_{name}_{faces[0][1]}")
-        lines += [str(e) for e, _ in faces]
-    for (body, name), faces in surfaces.items():
-        lines.append(f"*SURFACE, NAME={name}, TYPE=ELEMENT")
-        lines.append(f"{body}_{name}_{faces[0][1]}, {faces[0][1]}")
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
+    write_inp(path, lines, surfaces)
 
 
 def case_mortar_patch_test_3d():

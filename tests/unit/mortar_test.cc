@@ -91,13 +91,14 @@ namespace
 
   /// The contact Jacobian of the scene @p text at a random state near the
   /// reference configuration against central finite differences.
+  template <int dim = 2>
   void
   expect_exact_jacobian(const std::string &text,
                         const std::string &tag,
                         const double       displacement)
   {
-    glide_test::ContactFixture<2> s(text, "mortar_fd_" + tag + ".prm");
-    VectorType                    U, v;
+    glide_test::ContactFixture<dim> s(text, "mortar_fd_" + tag + ".prm");
+    VectorType                      U, v;
     glide_test::random_contact_state(
       s.e, s.contact, U, v, 3, displacement, 0.02);
     if (s.contact.needs_new_pattern(U))
@@ -312,33 +313,6 @@ namespace
     return s.str();
   }
 
-  /// As expect_exact_jacobian(), in 3D.
-  void
-  expect_exact_jacobian_3d(const std::string &text,
-                           const std::string &tag,
-                           const double       displacement)
-  {
-    glide_test::ContactFixture<3> s(text, "mortar_fd_" + tag + ".prm");
-    VectorType                    U, v;
-    glide_test::random_contact_state(
-      s.e, s.contact, U, v, 3, displacement, 0.02);
-    if (s.contact.needs_new_pattern(U))
-      s.e.setup_system(s.contact.owned_multipliers(),
-                       [&](DynamicSparsityPattern &dsp) {
-                         s.contact.add_sparsity(dsp);
-                       });
-    const auto [err, ref] =
-      glide_test::contact_jacobian_error(s.e, s.contact, U, v, 1e-7);
-    EXPECT_GT(ref, 0.) << tag;
-    EXPECT_LT(err, 1e-6 * ref) << tag;
-    const auto   stats  = s.contact.statistics(U);
-    const int    active = std::stoi(stats[0].second);
-    unsigned int n      = 0;
-    for (const auto &st : s.contact.status(U))
-      n += st.closed ? 0 : 1;
-    EXPECT_GT(active, 0) << tag << ": some nodes closed";
-    EXPECT_GT(n, 0u) << tag << ": some nodes open";
-  }
 } // namespace
 
 // R14.4 in 3D: the consistent linearization through the clipping.
@@ -348,21 +322,21 @@ TEST(Mortar, JacobianMatchesFiniteDifferences3D)
     {
       const std::string e(enforcement);
       // Curved master over a flat slave.
-      expect_exact_jacobian_3d(ball_on_block_3d(false, false, e),
+      expect_exact_jacobian<3>(ball_on_block_3d(false, false, e),
                                "ball_master_3d_" + e,
                                0.01);
       // Curved, warped slave facets on a flat master.
-      expect_exact_jacobian_3d(ball_on_block_3d(true, false, e),
+      expect_exact_jacobian<3>(ball_on_block_3d(true, false, e),
                                "ball_slave_3d_" + e,
                                0.01);
       // Symmetry planes at the slave's boundary.
-      expect_exact_jacobian_3d(ball_on_block_3d(false, true, e),
+      expect_exact_jacobian<3>(ball_on_block_3d(false, true, e),
                                "ball_symmetry_3d_" + e,
                                0.01);
       // Flat, non-matching, the slave overhanging the master on two sides
       // (its facets there partly or wholly outside: the nodes beyond the
       // master's edges have no constraint and count as open).
-      expect_exact_jacobian_3d(stacked_blocks_3d(0.45,
+      expect_exact_jacobian<3>(stacked_blocks_3d(0.45,
                                                  1.45,
                                                  0.3,
                                                  1.3,

@@ -254,6 +254,13 @@ namespace glide
     dealii::Point<dim>
     position(const unsigned int i, const VectorType &U) const;
 
+    /// Log the slave nodes whose constraint in @p s failed (R16.3), by
+    /// their reference positions, as "@p what did not converge for N slave
+    /// node(s) ...".
+    void
+    report_failed(const std::vector<Constraint<dim>> &s,
+                  const std::string                  &what) const;
+
     PairContext<dim>                      context;
     std::unique_ptr<RigidMaster<dim>>     master;
     std::unique_ptr<MasterSurface<dim>>   surface;
