@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 namespace glide
@@ -593,6 +594,27 @@ namespace glide
             if (s[i].found())
               penetration = std::max(penetration, -s[i].gap);
           }
+        // The force on the master surface of a body (R14.6: the exact
+        // reaction of the slave's): lambda times the force direction G in
+        // the rows of the DoFs that are not slave DoFs (the linearization
+        // lists DoFs node by node, components in order).
+        Tensor<1, dim> master_force;
+        if (pair.formulation->master_surface() != nullptr)
+          {
+            std::set<types::global_dof_index> slave_dofs;
+            for (const auto &node : pair.nodes)
+              slave_dofs.insert(node.dofs.begin(), node.dofs.end());
+            typename Formulation<dim>::Linearization l;
+            for (unsigned int i = 0; i < s.size(); ++i)
+              if (s[i].found() && f[i].lambda != 0.)
+                {
+                  pair.formulation->linearize(i, s[i], U, l);
+                  for (unsigned int a = 0; a < l.dofs.size(); ++a)
+                    if (slave_dofs.count(l.dofs[a]) == 0)
+                      master_force[a % dim] += f[i].lambda * l.force(a);
+                }
+            master_force = Utilities::MPI::sum(master_force, comm);
+          }
         const std::string p = "contact_" + pair.parameters->name + "_";
         row.emplace_back(p + "active",
                          std::to_string(Utilities::MPI::sum(active, comm)));
@@ -602,6 +624,10 @@ namespace glide
         force = Utilities::MPI::sum(force, comm);
         for (unsigned int d = 0; d < dim; ++d)
           row.emplace_back(p + "force_" + axis[d], format_number(force[d]));
+        if (pair.formulation->master_surface() != nullptr)
+          for (unsigned int d = 0; d < dim; ++d)
+            row.emplace_back(p + "master_force_" + axis[d],
+                             format_number(master_force[d]));
         double max_slip = 0;
         for (const double slip : pair.formulation->slip())
           max_slip = std::max(max_slip, slip);

@@ -1445,6 +1445,8 @@ def case_mortar_patch_test():
         close(mean, 1e4, 1e-7, f"{name}: mean pressure")
         force = abs(rows[-1]["contact_interface_force_y"])
         close(force, rows[-1]["reaction_bottom_y"], 1e-10, f"{name}: contact force = support reaction")
+        close(-rows[-1]["contact_interface_master_force_y"], rows[-1]["contact_interface_force_y"], 1e-10,
+              f"{name}: force on the master = -force on the slave")
         check(rows[-1]["cut_backs"] == 0 and rows[-1]["kinsol_iterations"] <= 2,
               f"{name}: {rows[-1]['kinsol_iterations']:.0f} iteration(s), no cut-back")
     # Finite strain: uniform (Cauchy) pressure, force balance.
@@ -1734,6 +1736,8 @@ def case_mortar_patch_test_3d():
         close(mean, 1e4, 1e-7, f"{name}: mean pressure")
         force = abs(rows[-1]["contact_interface_force_y"])
         close(force, rows[-1]["reaction_bottom_y"], 1e-10, f"{name}: contact force = support reaction")
+        close(-rows[-1]["contact_interface_master_force_y"], rows[-1]["contact_interface_force_y"], 1e-10,
+              f"{name}: force on the master = -force on the slave")
         check(rows[-1]["cut_backs"] == 0, f"{name}: no cut-back")
     for name, sets in {"mortar_3d_general_quadrilaterals": files["general"],
                        "mortar_3d_general_quadrilaterals_swapped": files["general"] + swapped}.items():
