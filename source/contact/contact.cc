@@ -686,7 +686,14 @@ namespace glide
         for (unsigned int i = 0; i < s.size(); ++i)
           {
             const auto &node = pair.nodes[i];
-            if (s[i].found() && s[i].gap - clearance <= 0.01 * node.size)
+            // Not where the formulation keeps the Jacobian stabilization
+            // off (faceted deformable masters, Formulation::stabilizable()):
+            // there the gap gradient jumps at vertices, and closing the
+            // nodes near the first contact point made the faceted Hertz
+            // scene alternate between facets and cycle
+            // (scene.hertz_2d_faceted_master).
+            if (s[i].found() && pair.formulation->stabilizable(s[i]) &&
+                s[i].gap - clearance <= 0.01 * node.size)
               {
                 U[node.multiplier] =
                   node.c * std::max(0., s[i].gap - clearance);

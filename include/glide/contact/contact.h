@@ -163,7 +163,10 @@ namespace glide
      * iterations with a line-search retry, 5 with this). The weighted gap of
      * the nodes next to the first contact point of two surfaces with relative
      * curvature kappa is about kappa h^2 / 6, so 1 % of h covers them on any
-     * mesh that resolves the curvature (kappa h <= 0.06). It changes the
+     * mesh that resolves the curvature (kappa h <= 0.06). Not on faceted
+     * deformable masters, where Formulation::stabilizable() is false (the
+     * gap gradient jumps at vertices; closing the nodes near the first
+     * contact point made the faceted Hertz scene cycle). It changes the
      * starting point only, never the residual (R16.1); nodes closed wrongly
      * open in the next iteration. Returns the number of nodes closed (all
      * processes).
