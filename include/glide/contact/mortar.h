@@ -40,9 +40,10 @@ namespace glide
    * with the multiplier L_j = D_jj lambda_j a nodal force whose
    * virtual work is L_j n_j . (delta x_j - sum_m (M_jm / D_jj) delta
    * x_m), M_jm = int_cov Phi_j N_m dA the mortar matrix of the master.
-   * The enforcement (hard NCP, penalty) is that of node to surface; the
-   * multipliers are eliminated node by node in that sense already: each
-   * L_j touches only its own slave node and the master.
+   * The enforcement (hard NCP, penalty) is that of node to surface. Each
+   * L_j enters only the rows of its own slave node and of the master, so
+   * the multipliers could be condensed node by node; they are not yet
+   * (they stay unknowns of KINSOL, doc/theory/mortar.md).
    *
    * Linearization: automatic differentiation (Sacado) through the whole
    * computation (nodal normals, segment ends, projections of the Gauss
