@@ -77,16 +77,50 @@ namespace glide
     // Input checks that need the constraints: every body held, every
     // function finite (before anything is written).
     elasticity.check_inputs();
-    const bool saddle_point = contact.n_multipliers() > 0;
+    // Hard contact adds multipliers: the direct solver takes the whole
+    // saddle-point system; AMG takes the displacement system left once they
+    // are eliminated (MultiplierCondensation), where that is possible.
+    const bool  saddle_point = contact.n_multipliers() > 0;
+    std::string why_not;
+    auto        blocks      = saddle_point ?
+                                contact.condensable_multipliers(why_not) :
+                                decltype(contact.condensable_multipliers(why_not))();
+    const bool  condensable = saddle_point && why_not.empty();
     require(
-      !(saddle_point && scene.linear_solver.type == "amg"),
+      !(saddle_point && !condensable && scene.linear_solver.type == "amg"),
       "In scene file '" + scene.file +
-        "': 'Linear solver/Type = amg' cannot solve the saddle-point systems of hard contact; "
-        "use 'direct' (or 'automatic'), or 'Enforcement = penalty'.");
+        "': 'Linear solver/Type = amg' cannot solve this scene's hard contact: " +
+        why_not +
+        ", so its multipliers cannot be eliminated. Use 'direct' (or "
+        "'automatic'), or 'Enforcement = penalty'.");
     const auto &dof_handler = elasticity.get_dof_handler();
-    if (linear_solver.choose(dim, saddle_point ? 0 : dof_handler.n_dofs()) ==
-        "amg")
-      modes = elasticity.rigid_body_modes();
+    if (linear_solver.choose(dim,
+                             saddle_point && !condensable ?
+                               0 :
+                               dof_handler.n_dofs()) == "amg")
+      {
+        modes = elasticity.rigid_body_modes();
+        if (saddle_point)
+          {
+            std::vector<MultiplierCondensation::Block> b;
+            for (auto &[m, dofs] : blocks)
+              b.push_back({m, std::move(dofs)});
+            linear_solver.set_condensation(
+              std::make_unique<MultiplierCondensation>(
+                std::move(b),
+                dof_handler.n_dofs(),
+                elasticity.locally_owned(),
+                comm));
+          }
+      }
+    else if (saddle_point && !condensable &&
+             scene.linear_solver.type == "automatic" &&
+             dof_handler.n_dofs() >
+               scene.linear_solver.automatic_direct_limit &&
+             dim == 3)
+      pcout << "Note: the direct solver, not AMG, for this 3D scene: "
+            << why_not << ", so the contact multipliers cannot be eliminated."
+            << std::endl;
 
     const auto &owned = elasticity.locally_owned();
     U.reinit(owned, comm);

@@ -468,6 +468,68 @@ namespace glide
   }
 
   template <int dim>
+  std::vector<
+    std::pair<types::global_dof_index, std::vector<types::global_dof_index>>>
+  Contact<dim>::condensable_multipliers(std::string &why_not) const
+  {
+    std::vector<
+      std::pair<types::global_dof_index, std::vector<types::global_dof_index>>>
+      blocks;
+    why_not.clear();
+    if (Utilities::MPI::n_mpi_processes(comm) > 1)
+      {
+        why_not = "the contact multipliers are eliminated on one process "
+                  "only for now";
+        return {};
+      }
+    std::set<types::global_dof_index> masters, slaves;
+    for (const auto &pair : pairs)
+      if (const auto *surface = pair.formulation->master_surface())
+        for (const auto &node : surface->get_nodes())
+          masters.insert(node.dofs.begin(), node.dofs.end());
+    const auto &constraints = elasticity.update_constraints();
+    for (const auto &pair : pairs)
+      {
+        if (pair.enforcement->block_size() == 0)
+          continue;
+        const std::string name = "contact pair '" + pair.parameters->name + "'";
+        if (pair.enforcement->block_size() != 1 ||
+            !pair.formulation->force_on_own_node())
+          {
+            why_not = "'" + pair.formulation->name() + "' (" + name +
+                      ") spreads each contact force over several slave nodes";
+            return {};
+          }
+        for (const auto &node : pair.nodes)
+          {
+            std::ostringstream x;
+            x << node.X;
+            for (const auto d : node.dofs)
+              {
+                const auto *entries = constraints.get_constraint_entries(d);
+                if (entries != nullptr && !entries->empty())
+                  {
+                    why_not = "the slave node at (" + x.str() + ") of " + name +
+                              " is a hanging node (a refined slave surface)";
+                    return {};
+                  }
+                if (masters.count(d) > 0 || !slaves.insert(d).second)
+                  {
+                    why_not = "the slave node at (" + x.str() + ") of " + name +
+                              " is on two contact surfaces";
+                    return {};
+                  }
+              }
+            blocks.emplace_back(node.multiplier,
+                                std::vector<types::global_dof_index>(
+                                  node.dofs.begin(), node.dofs.end()));
+          }
+      }
+    std::sort(blocks.begin(), blocks.end());
+    return blocks;
+  }
+
+  template <int dim>
   void
   Contact<dim>::set_time(const double t)
   {

@@ -34,10 +34,31 @@ namespace glide
   std::string
   LinearSolver::description() const
   {
-    return kind == "direct" ?
-             "direct (Amesos " + parameters.direct_solver + ")" :
-             "GMRES with ML algebraic multigrid";
+    if (kind == "direct")
+      return "direct (Amesos " + parameters.direct_solver + ")";
+    return condensation ? "GMRES with ML algebraic multigrid (contact "
+                          "multipliers eliminated)" :
+                          "GMRES with ML algebraic multigrid";
   }
+
+  namespace
+  {
+    /// The condensed matrix as the operator of deal.II's GMRES.
+    struct EpetraOperator
+    {
+      const Epetra_CrsMatrix &matrix;
+
+      void
+      vmult(TrilinosWrappers::MPI::Vector       &dst,
+            const TrilinosWrappers::MPI::Vector &src) const
+      {
+        const int ierr =
+          matrix.Multiply(false, src.trilinos_vector(), dst.trilinos_vector());
+        if (ierr != 0)
+          throw std::runtime_error("Epetra_CrsMatrix::Multiply failed");
+      }
+    };
+  } // namespace
 
   void
   LinearSolver::initialize(
@@ -57,6 +78,15 @@ namespace glide
         return;
       }
 
+    // Hard contact: AMG works on the displacement system that remains
+    // once the multipliers are eliminated.
+    if (condensation)
+      condensation->condense(A);
+    const Epetra_RowMatrix &M =
+      condensation ?
+        static_cast<const Epetra_RowMatrix &>(condensation->matrix()) :
+        static_cast<const Epetra_RowMatrix &>(A.trilinos_matrix());
+
     TrilinosWrappers::PreconditionAMG::AdditionalData data;
     data.elliptic              = true;
     data.higher_order_elements = false;
@@ -64,18 +94,24 @@ namespace glide
     data.aggregation_threshold = 0.02;
     Teuchos::ParameterList              list;
     std::unique_ptr<Epetra_MultiVector> constant_modes;
-    data.set_parameters(list, constant_modes, A);
-    // Replace the constant modes by the rigid-body modes of elasticity.
-    const auto &map = A.trilinos_matrix().RowMap();
-    null_space      = std::make_unique<Epetra_MultiVector>(map, modes.size());
-    for (unsigned int m = 0; m < modes.size(); ++m)
-      for (int i = 0; i < map.NumMyElements(); ++i)
-        (*null_space)[m][i] = modes[m][map.GID(i)];
+    data.set_parameters(list, constant_modes, M);
+    // Replace the constant modes by the rigid-body modes of elasticity
+    // (rotated into the frames of the closed slave nodes if condensed).
+    if (condensation)
+      null_space = condensation->rotated_modes(modes);
+    else
+      {
+        const auto &map = A.trilinos_matrix().RowMap();
+        null_space = std::make_unique<Epetra_MultiVector>(map, modes.size());
+        for (unsigned int m = 0; m < modes.size(); ++m)
+          for (int i = 0; i < map.NumMyElements(); ++i)
+            (*null_space)[m][i] = modes[m][map.GID(i)];
+      }
     list.set("null space: type", "pre-computed");
     list.set("null space: dimension", null_space->NumVectors());
     list.set("null space: vectors", null_space->Values());
     amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-    amg->initialize(A, list);
+    amg->initialize(M, list);
   }
 
   unsigned int
@@ -98,7 +134,21 @@ namespace glide
     x = 0;
     try
       {
-        gmres.solve(*matrix, x, b, *amg);
+        if (condensation)
+          {
+            TrilinosWrappers::MPI::Vector cb, cx;
+            condensation->condense_rhs(b, cb);
+            cx.reinit(cb);
+            control.set_tolerance(
+              std::max(1e-14,
+                       std::min(relative_tolerance,
+                                parameters.relative_tolerance)) *
+              cb.l2_norm());
+            gmres.solve(EpetraOperator{condensation->matrix()}, cx, cb, *amg);
+            condensation->expand(b, cx, x);
+          }
+        else
+          gmres.solve(*matrix, x, b, *amg);
       }
     catch (const SolverControl::NoConvergence &e)
       {

@@ -66,9 +66,14 @@ namespace glide
                       Patterns::Selection("automatic|direct|amg"),
                       "direct: sparse LU (see 'Direct solver'). amg: GMRES "
                       "preconditioned by Trilinos ML algebraic multigrid "
-                      "with rigid-body modes, for large 3D problems. "
-                      "automatic: direct in 2D and for 3D problems up to "
-                      "'Automatic direct limit' DoFs, amg above.");
+                      "with rigid-body modes, for large 3D problems; with "
+                      "hard contact it solves the displacement system left "
+                      "once the contact multipliers are eliminated (node to "
+                      "surface and mortar, one process, no hanging nodes on "
+                      "slave surfaces; doc/theory/mortar.md). automatic: "
+                      "direct in 2D and for 3D problems up to 'Automatic "
+                      "direct limit' DoFs, amg above (direct, with a note in "
+                      "the log, where hard contact cannot be condensed).");
     prm.declare_entry("Direct solver",
                       "MUMPS",
                       Patterns::Selection("MUMPS|KLU"),

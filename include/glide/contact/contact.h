@@ -117,6 +117,18 @@ namespace glide
     void
     set_time(const double t);
 
+    /**
+     * The multipliers of hard contact with the DoFs of their slave nodes,
+     * for MultiplierCondensation, or none, with the reason in @p why_not,
+     * where they cannot be eliminated: a formulation that spreads a force
+     * over several slave nodes (surface to surface, small sliding), a slave
+     * node at a hanging node (tied to its neighbours), a node that is slave
+     * of two pairs or also on a master surface, or more than one process.
+     */
+    std::vector<std::pair<dealii::types::global_dof_index,
+                          std::vector<dealii::types::global_dof_index>>>
+    condensable_multipliers(std::string &why_not) const;
+
     /// Add the contact terms to F (and to J if given), condensed with the
     /// displacement constraints. Changes nothing: F is a function of U,
     /// the load factor, the holds and the committed state (R16.1).

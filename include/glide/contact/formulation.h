@@ -190,6 +190,15 @@ namespace glide
     virtual unsigned int
     n_fallbacks() const;
 
+    /// True if the force of constraint @p i acts on slave node i alone,
+    /// with the master nodes (node to surface, mortar's dual basis): then
+    /// the multipliers can be eliminated (MultiplierCondensation).
+    virtual bool
+    force_on_own_node() const
+    {
+      return true;
+    }
+
     /// Add the normal force @p lambda of constraint @p i to the nodal
     /// forces @p nodal (surface to surface: shared over its region).
     virtual void

@@ -63,6 +63,14 @@ namespace glide
     unsigned int
     n_fallbacks() const override;
 
+    /// Surface to surface spreads the force of a constraint over the
+    /// nodes of its averaging region.
+    bool
+    force_on_own_node() const override
+    {
+      return !surface_to_surface;
+    }
+
     void
     distribute(const unsigned int   i,
                const double         lambda,

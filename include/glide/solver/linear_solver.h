@@ -1,5 +1,6 @@
 #pragma once
 
+#include <glide/solver/multiplier_condensation.h>
 #include <glide/solver/solver_parameters.h>
 
 #include <deal.II/lac/trilinos_precondition.h>
@@ -43,6 +44,22 @@ namespace glide
       amg.reset();
     }
 
+    /// Solve hard-contact systems by eliminating their multipliers first
+    /// (AMG only; see MultiplierCondensation).
+    void
+    set_condensation(std::unique_ptr<MultiplierCondensation> c)
+    {
+      condensation = std::move(c);
+    }
+
+    /// Closed contact multipliers eliminated at the last initialize() (0
+    /// without condensation).
+    unsigned int
+    n_condensed() const
+    {
+      return condensation && kind == "amg" ? condensation->n_closed() : 0;
+    }
+
     /// Factorize (direct) or build the AMG hierarchy for @p matrix.
     void
     initialize(const dealii::TrilinosWrappers::SparseMatrix &matrix,
@@ -70,5 +87,6 @@ namespace glide
     std::unique_ptr<dealii::TrilinosWrappers::SolverDirect>    direct;
     std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> amg;
     std::unique_ptr<Epetra_MultiVector>                        null_space;
+    std::unique_ptr<MultiplierCondensation>                    condensation;
   };
 } // namespace glide

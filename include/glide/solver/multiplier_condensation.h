@@ -1,0 +1,149 @@
+#pragma once
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/types.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <Epetra_CrsMatrix.h>
+#include <Epetra_MultiVector.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace glide
+{
+  /**
+   * Elimination of the multipliers of hard contact from the Newton system
+   * (issue 14, doc/theory/mortar.md, "Condensation"), so that GMRES with
+   * algebraic multigrid can solve it. It applies where the contact force
+   * of each multiplier acts on one slave node alone (the dual mortar basis
+   * and node to surface): the node's rows S_j of the Jacobian
+   *
+   *   [ A  B ] [du]   [f]
+   *   [ C  E ] [dl] = [h]
+   *
+   * hold the multiplier j and no other, with the column b_j = B(S_j, j)
+   * (the force direction on the node). Then
+   *  - an open multiplier (E_jj = 1, C_j = 0) is known: dl_j = h_j / E_jj;
+   *  - a closed one (E_jj = 0) follows from the node's rows projected on
+   *    b_j: dl_j = b_j^T (f_S - A_S du) / |b_j|^2. Put into every other
+   *    row i that holds it (the master nodes the force reaches), this adds
+   *    -B_ij b_j^T A_S / |b_j|^2; the node's own rows become its tangential
+   *    rows t_k^T A_S and, in the normal direction, the constraint row C_j.
+   * The closed node's displacements are written in its frame [n t_1 t_2]
+   * (n = b_j / |b_j|), so that the constraint row has c dg/du_n, a
+   * positive entry of the size of the stiffness, on its diagonal and the
+   * tangential block stays t^T A t. The result is a displacement-only
+   * matrix with the sparsity of the bulk plus the master-slave fill, which
+   * ML's smoothed aggregation handles with the rigid-body modes rotated
+   * into the same frames. After the solve, du is rotated back and dl
+   * recovered from the rows above.
+   *
+   * One process: the fill of a master row needs the rows of the slave
+   * nodes it is coupled to (issue 15 extends this).
+   */
+  class MultiplierCondensation
+  {
+  public:
+    /// One multiplier and the DoFs of its slave node.
+    struct Block
+    {
+      dealii::types::global_dof_index              multiplier;
+      std::vector<dealii::types::global_dof_index> dofs;
+    };
+
+    /// @p blocks: every multiplier (numbered from @p n_displacements on,
+    /// contiguously) with its slave node's DoFs, which no other block
+    /// shares and no multiplier other than its own reaches.
+    MultiplierCondensation(
+      std::vector<Block>                    blocks,
+      const dealii::types::global_dof_index n_displacements,
+      const dealii::IndexSet               &owned,
+      MPI_Comm                              comm);
+
+    ~MultiplierCondensation();
+
+    /// Build the condensed matrix of the full Jacobian @p J (its closed
+    /// multipliers are those with a zero diagonal entry).
+    void
+    condense(const dealii::TrilinosWrappers::SparseMatrix &J);
+
+    /// The condensed matrix (displacement DoFs, closed nodes rotated).
+    const Epetra_CrsMatrix &
+    matrix() const
+    {
+      return *condensed;
+    }
+
+    /// The rigid-body modes @p modes (full vectors) on the condensed
+    /// system, rotated like the unknowns.
+    std::unique_ptr<Epetra_MultiVector>
+    rotated_modes(
+      const std::vector<dealii::TrilinosWrappers::MPI::Vector> &modes) const;
+
+    /// The right-hand side of the condensed system for the full one @p b.
+    void
+    condense_rhs(const dealii::TrilinosWrappers::MPI::Vector &b,
+                 dealii::TrilinosWrappers::MPI::Vector &condensed_b) const;
+
+    /// The full solution @p x from the condensed one @p condensed_x and the
+    /// full right-hand side @p b.
+    void
+    expand(const dealii::TrilinosWrappers::MPI::Vector &b,
+           const dealii::TrilinosWrappers::MPI::Vector &condensed_x,
+           dealii::TrilinosWrappers::MPI::Vector       &x) const;
+
+    /// The owned displacement DoFs (the condensed system's rows).
+    const dealii::IndexSet &
+    displacements() const
+    {
+      return owned_displacements;
+    }
+
+    /// Closed multipliers at the last condense().
+    unsigned int
+    n_closed() const;
+
+  private:
+    /// A block at the current Jacobian.
+    struct State
+    {
+      bool                closed        = false;
+      double              open_diagonal = 1.; ///< E_jj of an open multiplier
+      std::vector<double> b;                  ///< B(S_j, j)
+      double              b_norm2 = 0.;
+      /// Frame: column 0 the normal n, then the tangents (frame[l][k]: row
+      /// l = DoF of the node, column k = direction).
+      std::vector<std::vector<double>> frame;
+      double                           sign = 1.; ///< of the constraint row
+    };
+
+    /// The entries of row @p row of J (global column indices).
+    void
+    row_of_j(const dealii::types::global_dof_index         row,
+             int                                          &n,
+             double                                      *&values,
+             std::vector<dealii::types::global_dof_index> &columns) const;
+
+    /// Call add(column, value) for the entries of condensed row @p row
+    /// (unrotated columns: add() rotates them); repeated columns possible.
+    template <typename Add>
+    void
+    condensed_row(const dealii::types::global_dof_index row, Add &&add) const;
+
+    std::vector<Block>                            blocks;
+    const dealii::types::global_dof_index         n_u;
+    const dealii::IndexSet                        owned;
+    dealii::IndexSet                              owned_displacements;
+    MPI_Comm                                      comm;
+    const dealii::TrilinosWrappers::SparseMatrix *J = nullptr;
+    std::vector<State>                            states;
+    /// For each displacement DoF: its block (-1: none) and its component.
+    std::vector<int>                  block_of;
+    std::vector<unsigned char>        component_of;
+    std::unique_ptr<Epetra_Map>       map;
+    std::unique_ptr<Epetra_CrsMatrix> condensed;
+  };
+} // namespace glide
