@@ -66,7 +66,8 @@ namespace glide
     bool
     solve_1d(const F &f, const double start, T &root)
     {
-      double s = start;
+      double s             = start;
+      double previous_step = std::numeric_limits<double>::max();
       for (unsigned int it = 0; it < 30; ++it)
         {
           double R, dR;
@@ -77,7 +78,10 @@ namespace glide
           s -= step;
           if (!std::isfinite(s) || std::abs(s) > 1e3)
             return false;
-          if (std::abs(step) < 1e-14 * (1. + std::abs(s)))
+          // Converged, or at the round-off floor (mortar_geometry::
+          // newton_stalled(): a short master facet far from the origin).
+          if (std::abs(step) < 1e-14 * (1. + std::abs(s)) ||
+              mortar_geometry::newton_stalled(std::abs(step), previous_step))
             {
               if constexpr (std::is_same_v<T, double>)
                 root = s;
@@ -89,6 +93,7 @@ namespace glide
                 }
               return true;
             }
+          previous_step = std::abs(step);
         }
       return false;
     }
@@ -515,6 +520,10 @@ namespace glide
                     V y, b;
                     line<T, T>(pm, Y, eta, q.Nm, y, b);
                     q.gap = (y[0] - x[0]) * nn[0] + (y[1] - x[1]) * nn[1];
+                    const T w = mortar_geometry::reach_weight(q.gap, radius[f]);
+                    if (plain(w) == 0.)
+                      continue;
+                    q.wJ *= w;
                     q.master_facet = c;
                     points.push_back(q);
                   }

@@ -1,0 +1,124 @@
+#!/usr/bin/env python3
+"""3D contact cost study (issue 14; a benchmark, not a test): the Hertz
+quarter model of parameters/hertz-3d-elastic.prm (elastic sphere R = 1 pressed
+0.02 into an elastic block, E = 1, nu = 0.3) with a uniform block of N x N x N
+cells over [0, 1] x [-1, 0] x [0, 1] (no hanging nodes on the slave, the
+block's top), in 2 load steps, for several N, with
+  - mortar, hard contact, GMRES + ML AMG on the condensed system, and
+  - node to surface (the default), hard contact, the direct solver (MUMPS),
+and, where asked, other pairs. Per run: DoFs, Newton iterations, total time,
+time per Newton iteration, the contact share (contact residual and Jacobian
+evaluations) and the linear solver share of the run, peak memory, and the
+peak nodal pressure against Hertz's p0. Every number comes from the run's own
+statistics.csv, timings.csv and contact CSV.
+
+Usage: python3 study/contact_3d.py --glide build/glide [--sizes 21,32]
+       [--runs mortar-amg,nts-direct] [--markdown FILE]
+"""
+import argparse
+import csv
+import math
+import os
+import platform
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SCENE = os.path.join(HERE, "..", "parameters", "hertz-3d-elastic.prm")
+
+RUNS = {
+    "mortar-amg": ("mortar", "GMRES+AMG (condensed)", ["Contact pair hertz/Formulation=mortar",
+                                                       "Linear solver/Type=amg"]),
+    "mortar-direct": ("mortar", "MUMPS", ["Contact pair hertz/Formulation=mortar",
+                                          "Linear solver/Type=direct"]),
+    "nts-direct": ("node to surface", "MUMPS", ["Linear solver/Type=direct"]),
+    "nts-amg": ("node to surface", "GMRES+AMG (condensed)", ["Linear solver/Type=amg"]),
+}
+
+
+def sphere_refinement(n):
+    """The sphere's finest cells about as fine as the block's (h = 1 / n)
+    over the contact zone (a = 0.146): local refinement levels and the
+    radius of the finest ones."""
+    levels = max(3, round(math.log2(n / 4)))
+    return [f"Body sphere/Refinement/Local refinements={levels}",
+            "Body sphere/Refinement/Minimum refinement radius=0.25"]
+
+
+def run(glide, n, key, out):
+    formulation, solver, sets = RUNS[key]
+    name = f"contact3d-{n}-{key}"
+    cmd = [glide, SCENE, "--set", f"Output/Directory={out}", "--set", f"Scene name={name}",
+           "--set", "Output/Write VTU=false", "--set", "Load stepping/Number of steps=2",
+           "--set", "Body block/Block/Lower corner=0, -1, 0", "--set", "Body block/Block/Upper corner=1, 0, 1",
+           "--set", f"Body block/Block/Subdivisions={n}, {n}, {n}",
+           "--set", "Body block/Refinement/Local refinements=0"]
+    for s in sphere_refinement(n) + sets:
+        cmd += ["--set", s]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        print(p.stdout[-3000:], p.stderr[-3000:])
+        return None
+    d = os.path.join(out, name)
+    with open(os.path.join(d, "timings.csv")) as f:
+        t = {r["quantity"]: r["value"] for r in csv.DictReader(f)}
+    with open(os.path.join(d, "statistics.csv")) as f:
+        rows = list(csv.DictReader(f))
+    g = lambda k: float(t.get(k, 0.0))
+    last = sorted(x for x in os.listdir(d) if x.startswith("contact-hertz-") and x.endswith(".csv"))[-1]
+    with open(os.path.join(d, last)) as f:
+        peak = max(float(r["CPRESS"]) for r in csv.DictReader(f))
+    F = -4 * float(rows[-1]["contact_hertz_force_y"])
+    e_star = 1 / (2 * (1 - 0.3 ** 2))
+    a = (3 * F / (4 * e_star)) ** (1 / 3)
+    p0 = 3 * F / (2 * math.pi * a * a)
+    newton = sum(int(float(r["kinsol_iterations"])) for r in rows)
+    total = g("total_wall_time")
+    contact = g("time:contact: residual") + g("time:contact: Jacobian")
+    solver_time = g("time:linear solver: setup") + g("time:linear solver: solve")
+    return {"n": n, "formulation": formulation, "solver": solver, "dofs": int(t["dofs"]),
+            "newton": newton, "per_step": [int(float(r["kinsol_iterations"])) for r in rows],
+            "cut_backs": int(float(rows[-1].get("cut_backs", 0))),
+            "gmres": sum(int(float(r["linear_iterations"])) for r in rows),
+            "total": total, "per_iteration": total / max(newton, 1),
+            "contact_share": contact / total, "solver_share": solver_time / total,
+            "memory": g("peak_memory_mib"), "p0_error": peak / p0 - 1}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--glide", required=True)
+    ap.add_argument("--sizes", default="21,32")
+    ap.add_argument("--runs", default="mortar-amg,nts-direct")
+    ap.add_argument("--markdown", help="append the table to this file")
+    a = ap.parse_args()
+    out = tempfile.mkdtemp(prefix="glide-contact3d-")
+    header = ("| N | formulation | linear solver | DoFs | Newton its (per step) | cut-backs | GMRES its | "
+              "total [s] | per Newton it. [s] | contact share | linear solver share | peak memory [MiB] | "
+              "MiB per 1e3 DoFs | peak p / p0 - 1 |")
+    lines = [header, "|---:|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    print(lines[0], flush=True)
+    for n in [int(x) for x in a.sizes.split(",")]:
+        for key in a.runs.split(","):
+            r = run(a.glide, n, key, out)
+            if r is None:
+                line = f"| {n} | {RUNS[key][0]} | {RUNS[key][1]} | failed | | | | | | | | | | |"
+            else:
+                line = (f"| {n} | {r['formulation']} | {r['solver']} | {r['dofs']} | {r['newton']} "
+                        f"({', '.join(map(str, r['per_step']))}) | {r['cut_backs']} | {r['gmres']} | "
+                        f"{r['total']:.1f} | {r['per_iteration']:.2f} | {100 * r['contact_share']:.0f} % | "
+                        f"{100 * r['solver_share']:.0f} % | {r['memory']:.0f} | "
+                        f"{1000 * r['memory'] / r['dofs']:.1f} | {100 * r['p0_error']:+.2f} % |")
+            lines.append(line)
+            print(line, flush=True)
+    note = (f"\nMeasured with `python3 study/contact_3d.py --sizes {a.sizes} --runs {a.runs}` on "
+            f"{platform.machine()}, {os.cpu_count()} cores, one process.\n")
+    print(note)
+    if a.markdown:
+        with open(a.markdown, "a") as f:
+            f.write("\n".join(lines) + "\n" + note)
+
+
+if __name__ == "__main__":
+    main()
