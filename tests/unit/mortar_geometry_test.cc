@@ -823,6 +823,33 @@ TEST(MortarGeometry, InverseBilinearMapRoundTrip)
 // trip for parameters inside the triangle (0.1,0.2), (1.9,0.5), (0.6,1.4)
 // to 1e-14; the parameters (0.7, 0.6) (sum 1.3 > 1) are found but reported
 // outside; a triangle with collinear vertices is singular.
+TEST(MortarGeometry, InverseBilinearMapAtTheRoundOffFloor)
+{
+  // A facet 1e-4 across at coordinates of 1000: the parameter of a point
+  // is known only to about 1e-16 * 1000 / 1e-4 = 1e-9, so Newton's step
+  // stalls far above the step tolerance (1e-13). That floor counts as
+  // converged (mg::newton_stalled()); before, such maps "did not converge"
+  // and mortar dropped their quadrature points at random (2D ironing with
+  // mortar stalled that way). The answer is right to the floor.
+  const double           h = 1e-4, c = 1000.;
+  const std::array<P, 4> v{{{{c, c}},
+                            {{c + h, c + 0.1 * h}},
+                            {{c + 0.2 * h, c + h}},
+                            {{c + 1.1 * h, c + 1.3 * h}}}};
+  for (const P &xi : {P{{0.3, 0.6}}, P{{0.9, 0.1}}})
+    {
+      const auto inverse = mg::inverse_bilinear_map(v, mg::bilinear_map(v, xi));
+      EXPECT_EQ(inverse.status, mg::InverseMapStatus::inside);
+      EXPECT_NEAR(inverse.xi[0], xi[0], 1e-7);
+      EXPECT_NEAR(inverse.xi[1], xi[1], 1e-7);
+    }
+  // Newton that still converges is never taken for stalled.
+  EXPECT_FALSE(mg::newton_stalled(1e-9, 1e-4));
+  EXPECT_FALSE(mg::newton_stalled(1e-12, 1e-6));
+  EXPECT_TRUE(mg::newton_stalled(2e-14, 3e-14));
+  EXPECT_FALSE(mg::newton_stalled(1e-7, 1e-7));
+}
+
 TEST(MortarGeometry, InverseTriangleMapRoundTrip)
 {
   const std::array<P, 3> v{{{{0.1, 0.2}}, {{1.9, 0.5}}, {{0.6, 1.4}}}};
