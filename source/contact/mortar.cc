@@ -519,11 +519,7 @@ namespace glide
                       }
                     V y, b;
                     line<T, T>(pm, Y, eta, q.Nm, y, b);
-                    q.gap     = (y[0] - x[0]) * nn[0] + (y[1] - x[1]) * nn[1];
-                    const T w = mortar_geometry::reach_weight(q.gap, radius[f]);
-                    if (plain(w) == 0.)
-                      continue;
-                    q.wJ *= w;
+                    q.gap = (y[0] - x[0]) * nn[0] + (y[1] - x[1]) * nn[1];
                     q.master_facet = c;
                     points.push_back(q);
                   }

@@ -146,7 +146,6 @@ namespace glide
     pair_moments(const std::array<std::array<S, 3>, 4> &X,
                  const std::array<std::array<S, 3>, 4> &n,
                  const std::array<std::array<S, 3>, 4> &Y,
-                 const double                           reach,
                  PairMoments<S>                        &r)
     {
       namespace mg = mortar_geometry;
@@ -216,13 +215,9 @@ namespace glide
               r.failed = true;
               continue;
             }
+          const S wJ  = q.weight * da / dp;
           const S gap = nn[0] * (y[0] - x[0]) + nn[1] * (y[1] - x[1]) +
                         nn[2] * (y[2] - x[2]);
-          // Points far from the slave fade out (mg::reach_weight()).
-          const S w = mg::reach_weight(gap, reach);
-          if (value(w) == 0.)
-            continue;
-          const S wJ = q.weight * da / dp * w;
           for (unsigned int k = 0; k < 4; ++k)
             {
               const S Nw = Ns[k] * wJ;
@@ -248,11 +243,10 @@ namespace glide
     pair_moments_in(const std::array<std::array<T, 3>, 4> &X,
                     const std::array<std::array<T, 3>, 4> &n,
                     const std::array<std::array<T, 3>, 4> &Y,
-                    const double                           reach,
                     PairMoments<T>                        &r)
     {
       if constexpr (std::is_same_v<T, double>)
-        pair_moments(X, n, Y, reach, r);
+        pair_moments(X, n, Y, r);
       else
         {
           using L = Sacado::Fad::SFad<double, 36>;
@@ -270,7 +264,7 @@ namespace glide
                 in[24 + i]           = &Y[v][d];
               }
           PairMoments<L> local;
-          pair_moments(Xl, nl, Yl, reach, local);
+          pair_moments(Xl, nl, Yl, local);
           r.failed        = local.failed;
           const auto lift = [&in](const L &a) {
             T b = a.val();
@@ -436,7 +430,7 @@ namespace glide
               }
             pairs.emplace_back(c, PairMoments<T>());
             auto &r = pairs.back().second;
-            pair_moments_in(X, n, Y, radius[f], r);
+            pair_moments_in(X, n, Y, r);
             t.failed = t.failed || r.failed;
             for (unsigned int k = 0; k < 4; ++k)
               {

@@ -78,6 +78,11 @@ namespace glide
         return;
       }
 
+    // The previous hierarchy (and condensed matrix) go first: with both
+    // generations alive the peak memory of a 1e6-DoF 3D contact scene grew
+    // by about a third.
+    amg.reset();
+    null_space.reset();
     // Hard contact: AMG works on the displacement system that remains
     // once the multipliers are eliminated.
     if (condensation)

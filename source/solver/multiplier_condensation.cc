@@ -255,6 +255,7 @@ namespace glide
         s.sign = diagonal > 0. ? 1. : -1.;
       }
 
+    condensed.reset(); // before its successor is built (peak memory)
     // Two passes over the rows: the number of distinct columns (Epetra's
     // static profile), then the values.
     const unsigned int n_rows = owned_displacements.n_elements();

@@ -79,34 +79,6 @@ namespace glide
       return v;
     }
 
-    /**
-     * The weight of a master point at gap @p gap in the integrals of a slave
-     * facet whose search reaches @p reach (the master facets whose bounding
-     * boxes come that close are its candidates): 1 up to reach / 2, then
-     * falling smoothly (C1: s^2 (3 - 2 s)) to 0 at reach. A master point at
-     * gap g lies within |g| of the slave facet, so every point with a
-     * nonzero weight is on a candidate: a master facet entering or leaving
-     * the search box changes no integral. With a hard cut at the box, the
-     * weighted gap of a node at the edge of the contact zone jumped each
-     * time a distant master facet (0.4 above the slab in the ironing
-     * scene) came into the box, and Newton stalled at such a jump. Points
-     * that close to the slave (a gap below half a facet and a half) keep
-     * their full weight, so the patch test and contact zones that resolve
-     * their curvature are unchanged.
-     */
-    template <typename T>
-    T
-    reach_weight(const T &gap, const double reach)
-    {
-      const double g = value(gap), start = 0.5 * reach;
-      if (g <= start)
-        return T(1.);
-      if (g >= reach)
-        return T(0.);
-      const T s = (gap - start) / (reach - start);
-      return 1. - s * s * (3. - 2. * s);
-    }
-
     // ------------------------------------------------------------------
     // 2D: overlap of parameter intervals
     // ------------------------------------------------------------------
