@@ -249,6 +249,8 @@ namespace glide
           if (contact.needs_new_pattern(u))
             rebuild_pattern(); // a slave node slid out of the pattern
         }
+      if (jacobian.m() == 0) // released after the last condensation
+        jacobian.reinit(elasticity.matrix_pattern());
       elasticity.jacobian(u, jacobian);
       if (contact.active())
         {
@@ -257,6 +259,11 @@ namespace glide
         }
       TimerOutput::Scope s(timer, "linear solver: setup");
       linear_solver.initialize(jacobian, modes);
+      // AMG on the condensed system keeps what it needs of the Jacobian:
+      // its memory (a third of a 3D scene's peak) goes back until the next
+      // set-up.
+      if (!linear_solver.keeps_matrix())
+        jacobian.clear();
     };
     callbacks.solve_jacobian = [this](const VectorType &rhs, VectorType &dx) {
       TimerOutput::Scope s(timer, "linear solver: solve");

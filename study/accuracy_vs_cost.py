@@ -153,7 +153,8 @@ def deformable_lines(results):
 # The faceted run first: it is the longest (about 15 minutes, some 380
 # cut-backs), and the two smoothed runs (about 5 minutes each) go one after
 # the other next to it.
-IRONING_VARIANTS = (("0", "unsymmetric"), ("0.2", "unsymmetric"), ("0.2", "symmetrized"))
+IRONING_VARIANTS = (("0", "unsymmetric"), ("0.2", "unsymmetric"), ("0.2", "symmetrized"),
+                    ("mortar", "consistent"))
 # Wall-clock limit per run.
 IRONING_LIMIT = 1800
 # Steady sliding: after 1.0 of the 3.0 slide (load factor 0.26 + 0.74 / 3).
@@ -164,9 +165,9 @@ def ironing_study(glide, out):
     """The 2D ironing scene for each variant, two runs at a time."""
     def one(variant):
         f, lin = variant
-        r = run_scene(glide, "ironing-2d.prm", out, f"ironing-f{f}-{lin}",
-                      f"Contact pair ironing/Smoothing fraction={f}", f"Contact pair ironing/Linearization={lin}",
-                      limit=IRONING_LIMIT)
+        sets = (["Contact pair ironing/Formulation=mortar"] if f == "mortar" else
+                [f"Contact pair ironing/Smoothing fraction={f}", f"Contact pair ironing/Linearization={lin}"])
+        r = run_scene(glide, "ironing-2d.prm", out, f"ironing-f{f}-{lin}", *sets, limit=IRONING_LIMIT)
         rows = r["rows"]
         entry = {"finished": r["finished"], "error": r["error"],
                  "reached": float(rows[-1]["load_factor"]) if rows else 0.0}
@@ -226,7 +227,7 @@ def ironing_lines(results):
              "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for key, e in results.items():
         _, f, lin = key.split(" ")
-        master = "faceted (f = 0)" if f == "f=0" else "smoothed (f = 0.2)"
+        master = {"f=0": "faceted (f = 0)", "f=mortar": "mortar (faceted die)"}.get(f, "smoothed (f = 0.2)")
         ripple = (f"{100 * e['ripple_normal']:.1f} % | {e['mean_normal']:.4f} | {100 * e['range_tangential']:.1f} %"
                   if "ripple_normal" in e else "- | - | -")
         its = f"{e['mean_its']:.2f} / {e['max_its']}" if "mean_its" in e else "-"

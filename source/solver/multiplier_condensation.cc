@@ -300,6 +300,36 @@ namespace glide
                                       touched.data());
       }
     condensed->FillComplete(*map, *map);
+
+    // What condense_rhs() and expand() need of J, so that J itself can be
+    // released until the next Jacobian (LinearSolver::keeps_matrix()): the
+    // multiplier entries of the rows of open nodes and master nodes, and
+    // the displacement part of the rows of closed nodes.
+    couplings.clear();
+    for (const auto row : owned_displacements)
+      {
+        const int jb = block_of[row];
+        if (jb >= 0 && states[jb].closed)
+          continue;
+        row_of_j(row, n, values, columns);
+        for (int e = 0; e < n; ++e)
+          if (columns[e] >= n_u && values[e] != 0.)
+            couplings.push_back(
+              {row, static_cast<unsigned int>(columns[e] - n_u), values[e]});
+      }
+    closed_rows.assign(blocks.size(), {});
+    for (unsigned int j = 0; j < blocks.size(); ++j)
+      if (states[j].closed)
+        for (const auto d : blocks[j].dofs)
+          {
+            row_of_j(d, n, values, columns);
+            std::vector<std::pair<types::global_dof_index, double>> entries;
+            for (int e = 0; e < n; ++e)
+              if (columns[e] < n_u)
+                entries.emplace_back(columns[e], values[e]);
+            closed_rows[j].push_back(std::move(entries));
+          }
+    J = nullptr;
   }
 
   std::unique_ptr<Epetra_MultiVector>
@@ -334,9 +364,6 @@ namespace glide
     TrilinosWrappers::MPI::Vector       &condensed_b) const
   {
     condensed_b.reinit(owned_displacements, comm);
-    std::vector<types::global_dof_index> columns;
-    int                                  n      = 0;
-    double                              *values = nullptr;
     for (const auto row : owned_displacements)
       {
         const int jb = block_of[row];
@@ -352,26 +379,24 @@ namespace glide
                 v += s.frame[l][k] * b(blocks[jb].dofs[l]);
           }
         else
-          {
-            v = b(row);
-            row_of_j(row, n, values, columns);
-            for (int e = 0; e < n; ++e)
-              if (columns[e] >= n_u && values[e] != 0.)
-                {
-                  const auto &s     = states[columns[e] - n_u];
-                  const auto &block = blocks[columns[e] - n_u];
-                  if (s.closed)
-                    {
-                      double bf = 0.;
-                      for (unsigned int l = 0; l < s.b.size(); ++l)
-                        bf += s.b[l] * b(block.dofs[l]);
-                      v -= values[e] * bf / s.b_norm2;
-                    }
-                  else
-                    v -= values[e] * b(block.multiplier) / s.open_diagonal;
-                }
-          }
+          v = b(row);
         condensed_b(row) = v;
+      }
+    // The multipliers in the other rows: closed ones through the slave
+    // node's rows, open ones known.
+    for (const auto &c : couplings)
+      {
+        const auto &s     = states[c.block];
+        const auto &block = blocks[c.block];
+        if (s.closed)
+          {
+            double bf = 0.;
+            for (unsigned int l = 0; l < s.b.size(); ++l)
+              bf += s.b[l] * b(block.dofs[l]);
+            condensed_b(c.row) -= c.value * bf / s.b_norm2;
+          }
+        else
+          condensed_b(c.row) -= c.value * b(block.multiplier) / s.open_diagonal;
       }
     condensed_b.compress(VectorOperation::insert);
   }
@@ -398,9 +423,6 @@ namespace glide
       }
     for (const auto row : owned_displacements)
       x(row) = du[row];
-    std::vector<types::global_dof_index> columns;
-    int                                  n      = 0;
-    double                              *values = nullptr;
     for (unsigned int j = 0; j < blocks.size(); ++j)
       {
         const auto &s     = states[j];
@@ -415,10 +437,8 @@ namespace glide
         for (unsigned int l = 0; l < block.dofs.size(); ++l)
           {
             double r = b(block.dofs[l]);
-            row_of_j(block.dofs[l], n, values, columns);
-            for (int e = 0; e < n; ++e)
-              if (columns[e] < n_u)
-                r -= values[e] * du[columns[e]];
+            for (const auto &[column, value] : closed_rows[j][l])
+              r -= value * du[column];
             v += s.b[l] * r;
           }
         x(block.multiplier) = v / s.b_norm2;

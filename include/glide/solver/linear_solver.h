@@ -60,6 +60,15 @@ namespace glide
       return condensation && kind == "amg" ? condensation->n_closed() : 0;
     }
 
+    /// False if solve() no longer reads the matrix given to initialize()
+    /// (AMG on the condensed system): the caller may release it until the
+    /// next initialize().
+    bool
+    keeps_matrix() const
+    {
+      return !(condensation && kind == "amg");
+    }
+
     /// Factorize (direct) or build the AMG hierarchy for @p matrix.
     void
     initialize(const dealii::TrilinosWrappers::SparseMatrix &matrix,

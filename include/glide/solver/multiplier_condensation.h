@@ -66,7 +66,8 @@ namespace glide
     ~MultiplierCondensation();
 
     /// Build the condensed matrix of the full Jacobian @p J (its closed
-    /// multipliers are those with a zero diagonal entry).
+    /// multipliers are those with a zero diagonal entry), and keep what
+    /// condense_rhs() and expand() need of J: J may be released after.
     void
     condense(const dealii::TrilinosWrappers::SparseMatrix &J);
 
@@ -141,8 +142,20 @@ namespace glide
     const dealii::TrilinosWrappers::SparseMatrix *J = nullptr;
     std::vector<State>                            states;
     /// For each displacement DoF: its block (-1: none) and its component.
-    std::vector<int>                  block_of;
-    std::vector<unsigned char>        component_of;
+    std::vector<int>           block_of;
+    std::vector<unsigned char> component_of;
+    /// A multiplier entry of a row that is not a closed node's.
+    struct Coupling
+    {
+      dealii::types::global_dof_index row;
+      unsigned int                    block;
+      double                          value;
+    };
+    std::vector<Coupling> couplings;
+    /// Closed blocks: the displacement entries of each of the node's rows.
+    std::vector<std::vector<
+      std::vector<std::pair<dealii::types::global_dof_index, double>>>>
+                                      closed_rows;
     std::unique_ptr<Epetra_Map>       map;
     std::unique_ptr<Epetra_CrsMatrix> condensed;
   };
