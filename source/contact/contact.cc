@@ -547,9 +547,10 @@ namespace glide
     const auto &constraints = elasticity.update_constraints();
     std::string failure; // a projection that failed on this process
     typename Formulation<dim>::Linearization l;
-    Vector<double>                           rhs;
-    FullMatrix<double>                       K;
-    std::vector<types::global_dof_index>     idx;
+    l.derivatives = J != nullptr;
+    Vector<double>                       rhs;
+    FullMatrix<double>                   K;
+    std::vector<types::global_dof_index> idx;
     for (const auto &pair : pairs)
       {
         const auto &formulation = *pair.formulation;
@@ -667,6 +668,7 @@ namespace glide
             for (const auto &node : pair.nodes)
               slave_dofs.insert(node.dofs.begin(), node.dofs.end());
             typename Formulation<dim>::Linearization l;
+            l.derivatives = false;
             for (unsigned int i = 0; i < s.size(); ++i)
               if (s[i].found() && f[i].lambda != 0.)
                 {

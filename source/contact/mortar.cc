@@ -626,19 +626,23 @@ namespace glide
     const unsigned int n  = dim * (p.slave.size() + p.master.size());
     const unsigned int nm = dim * p.slave.size();
     std::vector<std::array<Fad, dim>> xs(p.slave.size()), xm(p.master.size());
+    // Values only (a residual): constants, whose derivative arrays are
+    // empty, so that the integration costs what compute() with doubles does.
+    const auto variable = [&](const unsigned int k, const double x) {
+      return l.derivatives ? Fad(n, k, x) : Fad(x);
+    };
     l.dofs.clear();
     for (unsigned int a = 0; a < p.slave.size(); ++a)
       for (unsigned int d = 0; d < dim; ++d)
         {
-          xs[a][d] = Fad(n, dim * a + d, slave_x[p.slave[a]][d]);
+          xs[a][d] = variable(dim * a + d, slave_x[p.slave[a]][d]);
           l.dofs.push_back(slave->get_nodes()[p.slave[a]].dofs[d]);
         }
     for (unsigned int a = 0; a < p.master.size(); ++a)
       for (unsigned int d = 0; d < dim; ++d)
         {
-          xm[a][d] = Fad(n,
-                         nm + dim * a + d,
-                         this->surface->get_positions()[p.master[a]][d]);
+          xm[a][d] = variable(nm + dim * a + d,
+                              this->surface->get_positions()[p.master[a]][d]);
           l.dofs.push_back(this->surface->get_nodes()[p.master[a]].dofs[d]);
         }
     Terms<Fad> t;

@@ -263,6 +263,35 @@ namespace glide
                 in[12 + i]           = &n[v][d];
                 in[24 + i]           = &Y[v][d];
               }
+          // Constants (a residual: Mortar::linearize() without
+          // derivatives): the moments in double.
+          if (std::all_of(in.begin(), in.end(), [](const T *x) {
+                return x->size() == 0;
+              }))
+            {
+              std::array<std::array<double, 3>, 4> Xd, nd, Yd;
+              for (unsigned int v = 0; v < 4; ++v)
+                for (unsigned int d = 0; d < 3; ++d)
+                  {
+                    Xd[v][d] = value(X[v][d]);
+                    nd[v][d] = value(n[v][d]);
+                    Yd[v][d] = value(Y[v][d]);
+                  }
+              PairMoments<double> plain;
+              pair_moments(Xd, nd, Yd, plain);
+              r.failed = plain.failed;
+              for (unsigned int k = 0; k < 4; ++k)
+                {
+                  r.D[k] = plain.D[k];
+                  r.G[k] = plain.G[k];
+                  for (unsigned int l = 0; l < 4; ++l)
+                    {
+                      r.MS[k][l] = plain.MS[k][l];
+                      r.MM[k][l] = plain.MM[k][l];
+                    }
+                }
+              return;
+            }
           PairMoments<L> local;
           pair_moments(Xl, nl, Yl, local);
           r.failed        = local.failed;

@@ -61,6 +61,18 @@ namespace glide_test
     };
     MatrixType J;
     J.reinit(e.matrix_pattern());
+    // The residual assembled alone (Linearization::derivatives false: a
+    // formulation may skip the derivatives) equals the one assembled with
+    // the Jacobian.
+    VectorType F_alone(U), F_with_J(U);
+    residual(U, F_alone);
+    F_with_J = 0;
+    contact.assemble(U, &F_with_J, &J);
+    const double size = F_with_J.linfty_norm();
+    F_with_J -= F_alone;
+    EXPECT_LE(F_with_J.linfty_norm(), 1e-13 * size)
+      << "the residual without derivatives differs from the one with them";
+    J = 0;
     contact.assemble(U, nullptr, &J);
     VectorType Jv(U), Fp(U), Fm(U), Up(U), Um(U);
     J.vmult(Jv, v);

@@ -148,6 +148,10 @@ namespace glide
       dealii::Vector<double>                       dgap;
       dealii::Vector<double>                       force;
       dealii::FullMatrix<double>                   dforce;
+      /// false: a residual only needs gap and force; a formulation may
+      /// then leave dgap and dforce zero (sized as force) and save the
+      /// cost of the derivatives (mortar: automatic differentiation).
+      bool derivatives = true;
     };
 
     /// The master surface made of the boundary faces with ids @p ids.
