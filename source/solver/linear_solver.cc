@@ -134,8 +134,15 @@ namespace glide
                                    std::min(relative_tolerance,
                                             parameters.relative_tolerance)) *
                             b.l2_norm());
+    // Right preconditioning: GMRES then measures the true residual b - A x,
+    // in the units of b, against a tolerance relative to |b|. (With left
+    // preconditioning deal.II measures the preconditioned residual, in the
+    // units of x: the test compared displacements with forces, and every
+    // solve failed once the moduli were 1e12, as in SI units.)
     SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
-      control, SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(100));
+      control,
+      SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(
+        100, /*right_preconditioning=*/true));
     x = 0;
     try
       {

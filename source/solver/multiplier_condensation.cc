@@ -160,7 +160,7 @@ namespace glide
         const unsigned int k = component_of[row];
         if (k == 0) // the constraint row
           for_each(blocks[jb].multiplier,
-                   [&](const auto c, const double v) { emit(c, s.sign * v); });
+                   [&](const auto c, const double v) { emit(c, s.scale * v); });
         else // tangential row k: t_k^T A_S
           for (unsigned int l = 0; l < s.frame.size(); ++l)
             if (s.frame[l][k] != 0.)
@@ -241,8 +241,8 @@ namespace glide
           v /= std::sqrt(s.b_norm2);
         s.frame = frame_of(normal);
         // The constraint row's entry in the normal direction of the node:
-        // c dg/du . n, negative for the usual sign of the gap; the row is
-        // turned so that it is positive, like the stiffness diagonal.
+        // c dg/du . n, negative for the usual sign of the gap, of the size
+        // of the pair's contact modulus c.
         double diagonal = 0.;
         row_of_j(m, n, values, columns);
         for (int e = 0; e < n; ++e)
@@ -252,7 +252,28 @@ namespace glide
           throw std::runtime_error(
             "a closed slave node's constraint does not involve its normal "
             "displacement; use 'Linear solver/Type = direct'");
-        s.sign = diagonal > 0. ? 1. : -1.;
+        // The row is scaled (an exact operation on an equation) so that
+        // its diagonal is the node's normal stiffness n^T A_SS n: AMG then
+        // sees the normal unknown of a closed node as stiff as its
+        // tangential ones, whatever the ratio of c to the slave's modulus.
+        // With the row of size c, a slave 1e6 times stiffer than its master
+        // (c the soft side's modulus) left GMRES + AMG short of its
+        // tolerance and the load steps were cut back to the limit. Where
+        // n^T A_SS n is not positive (possible at finite strain), only the
+        // sign is turned.
+        double normal_stiffness = 0.;
+        for (unsigned int l = 0; l < block.dofs.size(); ++l)
+          {
+            row_of_j(block.dofs[l], n, values, columns);
+            for (int e = 0; e < n; ++e)
+              if (columns[e] < n_u &&
+                  block_of[columns[e]] == static_cast<int>(j))
+                normal_stiffness +=
+                  normal[l] * values[e] * normal[component_of[columns[e]]];
+          }
+        s.scale = normal_stiffness > 0. ? normal_stiffness / diagonal :
+                  diagonal > 0.         ? 1. :
+                                          -1.;
       }
 
     condensed.reset(); // before its successor is built (peak memory)
@@ -373,7 +394,7 @@ namespace glide
             const auto &s = states[jb];
             const auto  k = component_of[row];
             if (k == 0)
-              v = s.sign * b(blocks[jb].multiplier);
+              v = s.scale * b(blocks[jb].multiplier);
             else
               for (unsigned int l = 0; l < s.frame.size(); ++l)
                 v += s.frame[l][k] * b(blocks[jb].dofs[l]);

@@ -164,11 +164,29 @@ namespace
         for (int e = 0; e < n; ++e)
           Cd(C.RowMap().GID(i), C.ColMap().GID(idx[e])) = values[e];
       }
-    // The normal row of a closed node is its constraint, turned so that
-    // its diagonal (c dg/du . n) is positive, of the size of c.
+    // The normal row of a closed node is its constraint, scaled so that
+    // its diagonal is the node's normal stiffness n^T A_SS n (n = b_j /
+    // |b_j|), whatever the constraint's own scale c.
     for (const auto &block : s.blocks)
       if (s.J(block.multiplier, block.multiplier) == 0.)
-        EXPECT_GT(Cd(block.dofs[0], block.dofs[0]), 5. * s.n_u);
+        {
+          std::vector<double> normal;
+          double              norm = 0.;
+          for (const auto d : block.dofs)
+            {
+              normal.push_back(s.J(d, block.multiplier));
+              norm += normal.back() * normal.back();
+            }
+          double stiffness = 0.;
+          for (unsigned int l = 0; l < block.dofs.size(); ++l)
+            for (unsigned int k = 0; k < block.dofs.size(); ++k)
+              stiffness += normal[l] * s.J(block.dofs[l], block.dofs[k]) *
+                           normal[k] / norm;
+          ASSERT_GT(stiffness, 0.);
+          EXPECT_NEAR(Cd(block.dofs[0], block.dofs[0]),
+                      stiffness,
+                      1e-12 * stiffness);
+        }
 
     TrilinosWrappers::MPI::Vector b(complete_index_set(s.n), MPI_COMM_WORLD);
     for (unsigned int i = 0; i < s.n; ++i)

@@ -118,7 +118,9 @@ namespace glide
       /// Frame: column 0 the normal n, then the tangents (frame[l][k]: row
       /// l = DoF of the node, column k = direction).
       std::vector<std::vector<double>> frame;
-      double                           sign = 1.; ///< of the constraint row
+      /// Factor of the constraint row: its diagonal becomes the node's
+      /// normal stiffness n^T A_SS n (see condense()).
+      double scale = 1.;
     };
 
     /// The entries of row @p row of J (global column indices).
