@@ -476,7 +476,19 @@ namespace glide
       scene.output.write_vtu && (step % scene.output.every == 0 || t >= 1.);
     TimerOutput::Scope s(timer, "output");
     if (write_vtu)
-      vtu->write(step, t, U);
+      {
+        // The nodal contact forces on both sides of every pair (the
+        // contact part of the residual, as a force on the bodies; zero
+        // where a displacement is prescribed).
+        VectorType contact_force;
+        if (contact.active())
+          {
+            contact_force.reinit(U);
+            contact.assemble(U, &contact_force, nullptr);
+            contact_force *= -1.;
+          }
+        vtu->write(step, t, U, contact.active() ? &contact_force : nullptr);
+      }
     // The indexes (.pvd files, statistics.csv) after the data they list.
     output->commit_step([&]() {
       if (write_vtu)

@@ -127,7 +127,8 @@ namespace glide
   void
   VtuWriter<dim>::write(const unsigned int step,
                         const double       time,
-                        const VectorType  &U)
+                        const VectorType  &U,
+                        const VectorType  *contact_force)
   {
     const auto      &dof_handler = elasticity.get_dof_handler();
     const auto       comm = elasticity.get_triangulation().get_communicator();
@@ -143,6 +144,17 @@ namespace glide
         dim, DataComponentInterpretation::component_is_part_of_vector));
     StressPostprocessor<dim> stress(elasticity);
     data_out.add_data_vector(U_ghost, stress);
+    VectorType force_ghost;
+    if (contact_force)
+      {
+        force_ghost = elasticity.ghosted_displacement(*contact_force);
+        data_out.add_data_vector(
+          force_ghost,
+          std::vector<std::string>(dim, "contact_force"),
+          DataOut<dim>::type_dof_data,
+          std::vector<DataComponentInterpretation::DataComponentInterpretation>(
+            dim, DataComponentInterpretation::component_is_part_of_vector));
+      }
     const auto   &tria = elasticity.get_triangulation();
     Vector<float> material(tria.n_active_cells()),
       subdomain(tria.n_active_cells());

@@ -808,6 +808,62 @@ def case_vtu_fields():
     check(vtk_to_numpy(pd.GetArray("material_id")).max() == 0, "one body, material id 0")
 
 
+def case_vtu_contact_force():
+    """Issue 14 ("contact force per pair on slave and master sides, in the
+    VTU and in statistics.csv"): the bulk VTU holds the nodal vector field
+    contact_force on both bodies. Summed over the slave body's nodes it is
+    the pair's contact force of statistics.csv (contact_<pair>_force_*),
+    summed over the master body's nodes the master force
+    (contact_<pair>_master_force_*), to 1e-6 of the force (the VTU holds
+    32-bit floats); the two balance;
+    and it is zero away from the contact zone. For node to surface (the
+    shipped scene, cylinder slave on a deformable block) and mortar. VTU
+    points are written per cell, so nodes are counted once by position and
+    body (material_id = the body's index in 'Bodies': cylinder 0, block 1)."""
+    import vtk  # python3-vtk9
+    from vtk.util.numpy_support import vtk_to_numpy
+    for label, extra in (("node to surface", []), ("mortar", ["Contact pair hertz/Formulation=mortar",
+                                                               "Contact pair hertz/Slave=block.top",
+                                                               "Contact pair hertz/Master=cylinder.curved"])):
+        rows, _, out = run(scene_file("hertz-2d-elastic.prm"), "Load stepping/Number of steps=2", *extra,
+                           name="force")
+        files = re.findall(r'file="([^"]+)"', open(os.path.join(out, "force.pvd")).read())
+        r = vtk.vtkXMLUnstructuredGridReader()
+        r.SetFileName(os.path.join(out, files[-1]))
+        r.Update()
+        grid = r.GetOutput()
+        pd = grid.GetPointData()
+        check(pd.GetArray("contact_force") is not None, f"{label}: point field contact_force")
+        if pd.GetArray("contact_force") is None:
+            continue
+        pts = vtk_to_numpy(grid.GetPoints().GetData())
+        f = vtk_to_numpy(pd.GetArray("contact_force"))
+        body = vtk_to_numpy(pd.GetArray("material_id"))
+        seen, total = set(), {0: [0.0, 0.0], 1: [0.0, 0.0]}
+        far = 0.0
+        for p, v, b in zip(pts, f, body):
+            key = (round(float(p[0]), 5), round(float(p[1]), 5), int(round(float(b))))
+            if key in seen:
+                continue
+            seen.add(key)
+            for d in range(2):
+                total[key[2]][d] += float(v[d])
+            if abs(p[0]) > 1.0:  # the contact half-width is 0.06
+                far = max(far, abs(float(v[0])), abs(float(v[1])))
+        last = rows[-1]
+        slave, master = (0, 1) if label == "node to surface" else (1, 0)
+        size = abs(last["contact_hertz_force_y"])
+        for d, axis in enumerate("xy"):
+            check(abs(total[slave][d] - last[f"contact_hertz_force_{axis}"]) <= 1e-6 * size,
+                  f"{label}: slave side sum {total[slave][d]:.10g} = contact_hertz_force_{axis} "
+                  f"{last[f'contact_hertz_force_{axis}']:.10g}")
+            check(abs(total[master][d] - last[f"contact_hertz_master_force_{axis}"]) <= 1e-6 * size,
+                  f"{label}: master side sum {total[master][d]:.10g} = contact_hertz_master_force_{axis} "
+                  f"{last[f'contact_hertz_master_force_{axis}']:.10g}")
+        check(size > 0 and abs(total[0][1] + total[1][1]) <= 1e-6 * size, f"{label}: the two sides balance")
+        check(far == 0.0, f"{label}: no contact force away from the contact zone ({far:.2e})")
+
+
 def case_interrupted_run_keeps_complete_steps():
     """P5.1: a run killed part-way leaves only complete files: every file in
     the .pvd exists and VTK reads it, no .tmp file is listed, and the

@@ -28,8 +28,13 @@ namespace glide
 
     /// Collective: write the VTU of step @p step at load factor @p time
     /// under its final name (OutputError on every process if it fails).
+    /// @p contact_force (same layout as U), if given, is written as the
+    /// nodal vector field `contact_force`.
     void
-    write(const unsigned int step, const double time, const VectorType &U);
+    write(const unsigned int step,
+          const double       time,
+          const VectorType  &U,
+          const VectorType  *contact_force = nullptr);
 
     /// Process 0, inside OutputDirectory::commit_step(): write the `.pvd`
     /// listing every VTU written so far.
