@@ -732,6 +732,8 @@ def main():
         lines += ironing_lines(ironing_results(a, out))
     else:
         lines += kept_section(report, "## Ironing")
+    # Written by study/ironing_3d.py (hours of runs), kept here.
+    lines += kept_section(report, "## Ironing 3D")
     lines += small_sliding_lines(small_sliding_cost(os.path.abspath(a.glide), out))
     lines += mortar_lines(a.doc, mortar_study(os.path.abspath(a.glide), out))
     lines += [

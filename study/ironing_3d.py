@@ -88,7 +88,7 @@ subsection Discretization
   set Geometric nonlinearity = true
 end
 set Bodies        = slab, die
-set Boundary conditions = ground, slab_symmetry, die_symmetry, drive
+set Boundary conditions = ground, symmetry, drive
 set Contact pairs = ironing
 subsection Body slab
   subsection Block
@@ -114,12 +114,8 @@ subsection Boundary condition ground
   set Surface = slab.bottom
   set Type    = fixed
 end
-subsection Boundary condition slab_symmetry
-  set Surface = slab.back
-  set Type    = ZSYMM
-end
-subsection Boundary condition die_symmetry
-  set Surface = die.SYM
+subsection Boundary condition symmetry
+  set Surface = slab.back, die.SYM
   set Type    = ZSYMM
 end
 subsection Boundary condition drive
@@ -154,13 +150,15 @@ def run(glide, out, key, slab, die, steps, limit):
            "--set", "Output/Write VTU=false"]
     for s in sets:
         cmd += ["--set", s]
-    try:
-        p = subprocess.run(cmd, capture_output=True, text=True, timeout=limit)
-        finished, log = p.returncode == 0, p.stdout + p.stderr
-    except subprocess.TimeoutExpired as e:
-        finished = False
-        log = (e.stdout.decode() if isinstance(e.stdout, bytes) else (e.stdout or "")) + \
-            f"\nstopped after the limit of {limit} s"
+    # The log goes to a file as the run goes (a run takes tens of minutes).
+    log_file = os.path.join(out, name + ".log")
+    with open(log_file, "w") as f:
+        try:
+            finished = subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT, timeout=limit).returncode == 0
+        except subprocess.TimeoutExpired:
+            finished = False
+    with open(log_file) as f:
+        log = f.read() + ("" if finished else f"\nstopped ({log_file})")
     d = os.path.join(out, name)
     rows = []
     if os.path.exists(os.path.join(d, "statistics.csv")):

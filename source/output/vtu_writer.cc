@@ -136,24 +136,23 @@ namespace glide
 
     DataOut<dim> data_out;
     data_out.attach_dof_handler(dof_handler);
-    data_out.add_data_vector(
-      U_ghost,
-      std::vector<std::string>(dim, "displacement"),
-      DataOut<dim>::type_dof_data,
-      std::vector<DataComponentInterpretation::DataComponentInterpretation>(
-        dim, DataComponentInterpretation::component_is_part_of_vector));
+    const auto add_vector_field = [&](const VectorType  &v,
+                                      const std::string &field) {
+      data_out.add_data_vector(
+        v,
+        std::vector<std::string>(dim, field),
+        DataOut<dim>::type_dof_data,
+        std::vector<DataComponentInterpretation::DataComponentInterpretation>(
+          dim, DataComponentInterpretation::component_is_part_of_vector));
+    };
+    add_vector_field(U_ghost, "displacement");
     StressPostprocessor<dim> stress(elasticity);
     data_out.add_data_vector(U_ghost, stress);
     VectorType force_ghost;
     if (contact_force)
       {
         force_ghost = elasticity.ghosted_displacement(*contact_force);
-        data_out.add_data_vector(
-          force_ghost,
-          std::vector<std::string>(dim, "contact_force"),
-          DataOut<dim>::type_dof_data,
-          std::vector<DataComponentInterpretation::DataComponentInterpretation>(
-            dim, DataComponentInterpretation::component_is_part_of_vector));
+        add_vector_field(force_ghost, "contact_force");
       }
     const auto   &tria = elasticity.get_triangulation();
     Vector<float> material(tria.n_active_cells()),
