@@ -257,8 +257,8 @@ namespace glide
         // sees the normal unknown of a closed node as stiff as its
         // tangential ones, whatever the ratio of c to the slave's modulus.
         // With the row of size c, a slave 1e6 times stiffer than its master
-        // (c the soft side's modulus) left GMRES + AMG short of its
-        // tolerance and the load steps were cut back to the limit. Where
+        // (c the soft side's modulus) kept GMRES + AMG from converging in
+        // 2000 iterations, and the load steps were cut back. Where
         // n^T A_SS n is not positive (possible at finite strain), only the
         // sign is turned.
         double normal_stiffness = 0.;
