@@ -133,8 +133,10 @@ namespace glide
     solution_scale = 1. / elasticity.length_scale();
     contact.set_scaling(residual_scale, solution_scale);
 
-    newton = std::make_unique<NonlinearSolver>(scene.nonlinear_solver, comm);
-    NonlinearSolverParameters damped_parameters = scene.nonlinear_solver;
+    NonlinearSolverParameters newton_parameters = scene.nonlinear_solver;
+    newton_parameters.round_off_floor           = elasticity.round_off_floor();
+    newton = std::make_unique<NonlinearSolver>(newton_parameters, comm);
+    NonlinearSolverParameters damped_parameters = newton_parameters;
     damped_parameters.strategy                  = "line search";
     damped = std::make_unique<NonlinearSolver>(damped_parameters, comm);
     setup_callbacks();
@@ -547,6 +549,16 @@ namespace glide
         pcout << "  converged in " << result.iterations
               << " iteration(s), scaled residual "
               << scientific(result.residual_norm) << std::endl;
+        if (result.at_floor)
+          pcout << "  Note: accepted above 'Nonlinear solver/Tolerance' = "
+                << scene.nonlinear_solver.tolerance
+                << ": KINSOL could not reduce the residual further, and "
+                << scientific(result.residual_norm)
+                << " is within the round-off floor "
+                << scientific(elasticity.round_off_floor())
+                << " that the stiffest body sets (10 x machine epsilon x "
+                   "its lambda + 2 mu / the softest Young's modulus)"
+                << std::endl;
         postprocess(stepper.steps(),
                     t_old,
                     result,

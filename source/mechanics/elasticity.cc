@@ -600,6 +600,23 @@ namespace glide
   }
 
   template <int dim>
+  double
+  Elasticity<dim>::round_off_floor() const
+  {
+    double p_wave = 0.;
+    for (const auto &b : scene.bodies)
+      if (!b.rigid)
+        {
+          const double E  = b.material.youngs_modulus,
+                       nu = b.material.poissons_ratio;
+          p_wave =
+            std::max(p_wave, E * (1. - nu) / ((1. + nu) * (1. - 2. * nu)));
+        }
+    return 10. * std::numeric_limits<double>::epsilon() * p_wave /
+           min_youngs_modulus;
+  }
+
+  template <int dim>
   void
   Elasticity<dim>::residual(const VectorType &U,
                             const double      t,

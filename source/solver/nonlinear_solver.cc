@@ -183,6 +183,16 @@ namespace glide
       }
     result.converged = std::isfinite(result.residual_norm) &&
                        result.residual_norm <= parameters.tolerance;
+    // KINSOL stopped (line search, step tolerance or iteration limit) with
+    // a residual that round-off alone can leave: as converged as this
+    // arithmetic allows.
+    if (!result.converged && failure.empty() &&
+        std::isfinite(result.residual_norm) &&
+        result.residual_norm <= parameters.round_off_floor)
+      {
+        result.converged = true;
+        result.at_floor  = true;
+      }
     if (!result.converged)
       {
         std::ostringstream s;

@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 using namespace dealii;
 using namespace glide;
 
@@ -126,4 +128,42 @@ TEST(NonlinearSolver, ResidualScalingMakesToleranceUnitFree)
       iterations[k] = result.iterations;
     }
   EXPECT_EQ(iterations[0], iterations[1]);
+}
+
+// A residual with noise of 1e-8 (a fixed function of x, as round-off in an
+// assembly is) cannot be reduced below about 1e-8: with a tolerance of
+// 1e-12 the solve fails, unless the round-off floor says that 1e-7 is as
+// far as the arithmetic goes; then it converges, flagged at_floor, with the
+// solution correct to the noise. A clean residual never gets the flag.
+TEST(NonlinearSolver, AcceptsAStallAtTheRoundOffFloorOnly)
+{
+  for (const double floor : {0., 1e-7})
+    for (const bool noisy : {true, false})
+      {
+        Problem p;
+        auto    cb    = p.callbacks();
+        auto    plain = cb.residual;
+        cb.residual   = [&](const NonlinearSolver::VectorType &x,
+                          NonlinearSolver::VectorType       &F) {
+          plain(x, F);
+          if (noisy)
+            for (unsigned int i = 0; i < 8; ++i)
+              F[i] += 1e-8 * std::sin(1e9 * x[i] + i);
+          F.compress(VectorOperation::insert);
+        };
+        NonlinearSolverParameters parameters;
+        parameters.tolerance       = 1e-12;
+        parameters.round_off_floor = floor;
+        parameters.strategy        = "line search";
+        NonlinearSolver             solver(parameters, MPI_COMM_WORLD);
+        NonlinearSolver::VectorType x(p.owned, MPI_COMM_WORLD);
+        const auto                  result = solver.solve(x, cb, 1., 1.);
+        const std::string what = std::string(noisy ? "noisy" : "clean") +
+                                 ", floor " + std::to_string(floor);
+        EXPECT_EQ(result.converged, !noisy || floor > 0.) << what;
+        EXPECT_EQ(result.at_floor, noisy && floor > 0.) << what;
+        if (result.converged)
+          for (unsigned int i = 0; i < 8; ++i)
+            EXPECT_NEAR(x[i] * x[i] * x[i] + x[i], 1. + i, 1e-7) << what;
+      }
 }

@@ -48,7 +48,10 @@ namespace glide
       unsigned int iterations        = 0;
       unsigned int linear_iterations = 0;
       double       residual_norm     = 0.; ///< scaled max-norm at the end
-      std::string  message;                ///< why it failed
+      /// Converged above the tolerance, at the round-off floor
+      /// (NonlinearSolverParameters::round_off_floor).
+      bool        at_floor = false;
+      std::string message; ///< why it failed
     };
 
     NonlinearSolver(const NonlinearSolverParameters &parameters, MPI_Comm comm);

@@ -18,7 +18,12 @@ namespace glide
     /// Stop when the scaled max-norm of the residual is below this. The
     /// residual is scaled by 1 / (E_min * A_ref), A_ref the mean boundary
     /// facet measure, so the tolerance is unit-free (a strain-like number).
-    double       tolerance          = 1e-10;
+    double tolerance = 1e-10;
+    /// The scaled residual that round-off alone can leave (set by the
+    /// problem from its bodies, Elasticity::round_off_floor(), not read
+    /// from the scene): a solve that stops above the tolerance but at or
+    /// below this counts as converged, and says so (Result::at_floor).
+    double       round_off_floor    = 0.;
     unsigned int maximum_iterations = 25;
     /// Jacobian re-use: 1 assembles the Jacobian every iteration.
     unsigned int maximum_setup_calls = 1;
