@@ -88,7 +88,7 @@ subsection Discretization
   set Geometric nonlinearity = true
 end
 set Bodies        = slab, die
-set Boundary conditions = ground, symmetry, drive
+set Boundary conditions = ground, slab_symmetry, die_symmetry, drive
 set Contact pairs = ironing
 subsection Body slab
   subsection Block
@@ -114,8 +114,13 @@ subsection Boundary condition ground
   set Surface = slab.bottom
   set Type    = fixed
 end
-subsection Boundary condition symmetry
-  set Surface = slab.back, die.SYM
+subsection Boundary condition slab_symmetry
+  set Surface = slab.back
+  set Type    = ZSYMM
+end
+subsection Boundary condition die_symmetry
+  # A node set of the mesh file: a list of surfaces cannot hold it.
+  set Surface = die.SYM
   set Type    = ZSYMM
 end
 subsection Boundary condition drive
