@@ -815,8 +815,8 @@ def case_vtu_contact_force():
     the pair's contact force of statistics.csv (contact_<pair>_force_*),
     summed over the master body's nodes the master force
     (contact_<pair>_master_force_*), to 1e-6 of the force (the VTU holds
-    32-bit floats); the two balance;
-    and it is zero away from the contact zone. For node to surface (the
+    32-bit floats); the two balance; and it is zero away from the contact
+    zone. For node to surface (the
     shipped scene, cylinder slave on a deformable block) and mortar. VTU
     points are written per cell, so nodes are counted once by position and
     body (material_id = the body's index in 'Bodies': cylinder 0, block 1)."""
