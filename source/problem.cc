@@ -381,6 +381,7 @@ namespace glide
       newton->solve(U_trial, callbacks, residual_scale, solution_scale);
     unsigned int attempts    = 1;
     bool         damped_done = false;
+    bool         held        = false;
     while (!result.converged && !damped_done)
       {
         // Holding is a change of the problem, made between solves, and
@@ -393,6 +394,7 @@ namespace glide
           again || scene.nonlinear_solver.retry_with_line_search;
         if (!retry)
           break;
+        held = held || n_holds > 0;
         contact.hold(holds);
         pcout << "  step failed"
               << (attempts == 1 ? " with full Newton steps" : "") << ": "
@@ -422,6 +424,23 @@ namespace glide
         ++attempts;
         damped_done = !again;
       }
+    // A held node answers the held problem; where its gap to the facet's
+    // plane is not its gap to the master (it has left the corner it
+    // alternated at), that is not the scene's answer: the step fails and
+    // is cut back instead.
+    if (result.converged && held)
+      if (const double error = contact.held_gap_error(U_trial);
+          error > max_held_gap_error)
+        {
+          result.converged = false;
+          std::ostringstream message;
+          message << "the gap of a slave node held on one master facet "
+                     "differs from its gap to the master by "
+                  << error << " of the facet's length (at most "
+                  << max_held_gap_error
+                  << "): the held problem's answer is not the scene's";
+          result.message = message.str();
+        }
     return result;
   }
 

@@ -124,5 +124,10 @@ namespace glide
     /// The iterate at which an attempt stopped for alternating nodes.
     VectorType restart;
     bool       have_restart = false;
+    /// A step whose held nodes' gaps (to their facet's plane) differ from
+    /// their gaps to the master by more than this fraction of the facet's
+    /// length fails (solve_step()): the held problem's answer is then not
+    /// the scene's (the node has left the corner it alternated at).
+    static constexpr double max_held_gap_error = 0.01;
   };
 } // namespace glide

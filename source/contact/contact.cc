@@ -468,6 +468,17 @@ namespace glide
   }
 
   template <int dim>
+  double
+  Contact<dim>::held_gap_error(const VectorType &U) const
+  {
+    double worst = 0.;
+    for (const auto &pair : pairs)
+      worst =
+        std::max(worst, pair.formulation->held_gap_error(constraints(pair, U)));
+    return Utilities::MPI::max(worst, comm);
+  }
+
+  template <int dim>
   std::vector<
     std::pair<types::global_dof_index, std::vector<types::global_dof_index>>>
   Contact<dim>::condensable_multipliers(std::string &why_not) const
@@ -573,7 +584,7 @@ namespace glide
                 continue;
               }
             const auto   f = enforcement.force(node, s, U);
-            const double w = J ? stabilization_weight(pair, node, s, f) : 0.;
+            const double w = J ? stabilization_weight(node, s, f) : 0.;
             enforcement.local(
               node, s, f, l, pair.parameters->symmetrized, w, idx, rhs, K);
             if (idx.empty())
@@ -596,13 +607,12 @@ namespace glide
   template <int dim>
   double
   Contact<dim>::stabilization_weight(
-    const Pair                                    &pair,
     const SlaveNode<dim>                          &node,
     const Constraint<dim>                         &s,
     const typename ContactEnforcement<dim>::Force &f) const
   {
-    if (!stabilize || !pair.formulation->stabilizable(s) || f.closed ||
-        !s.found() || !(s.gap >= 0.) || s.gap >= node.size)
+    if (!stabilize || f.closed || !s.found() || !(s.gap >= 0.) ||
+        s.gap >= node.size)
       return 0.;
     const double w = 1. - s.gap / node.size;
     return stabilization * node.c * w * w;
@@ -750,14 +760,7 @@ namespace glide
         for (unsigned int i = 0; i < s.size(); ++i)
           {
             const auto &node = pair.nodes[i];
-            // Not where the formulation keeps the Jacobian stabilization
-            // off (faceted deformable masters, Formulation::stabilizable()):
-            // there the gap gradient jumps at vertices, and closing the
-            // nodes near the first contact point made the faceted Hertz
-            // scene alternate between facets and cycle
-            // (scene.hertz_2d_faceted_master).
-            if (s[i].found() && pair.formulation->stabilizable(s[i]) &&
-                s[i].gap - clearance <= 0.01 * node.size)
+            if (s[i].found() && s[i].gap - clearance <= 0.01 * node.size)
               {
                 U[node.multiplier] =
                   node.c * std::max(0., s[i].gap - clearance);

@@ -41,10 +41,15 @@ namespace glide
         }
       // Jacobian stabilization of open nodes near the master
       // (Contact::stabilization_weight(); the residual is untouched).
+      // A faceted master gives a direction that does not jump at its
+      // vertices (Linearization::spring).
       if (stabilization > 0.)
-        for (unsigned int a = 0; a < m; ++a)
-          for (unsigned int b = 0; b < m; ++b)
-            K(a, b) += stabilization * row(a) * row(b);
+        {
+          const Vector<double> &v = l.spring.size() == m ? l.spring : row;
+          for (unsigned int a = 0; a < m; ++a)
+            for (unsigned int b = 0; b < m; ++b)
+              K(a, b) += stabilization * v(a) * v(b);
+        }
     }
   } // namespace
 

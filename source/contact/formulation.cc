@@ -89,10 +89,10 @@ namespace glide
   }
 
   template <int dim>
-  bool
-  Formulation<dim>::stabilizable(const Constraint<dim> &) const
+  double
+  Formulation<dim>::held_gap_error(const std::vector<Constraint<dim>> &) const
   {
-    return true;
+    return 0.;
   }
 
   template <int dim>

@@ -565,6 +565,8 @@ namespace glide
         ++positions_version;
         searchable = false;
       }
+    if (fraction == 0. && (moved || node_normal.size() != nodes.size()))
+      update_node_normals();
     if (!search || searchable)
       return;
     searchable = true;
@@ -599,6 +601,52 @@ namespace glide
         boxes.emplace_back(BoundingBox<dim>(std::make_pair(lo, hi)), i);
       }
     tree = pack_rtree(boxes);
+  }
+
+  template <int dim>
+  void
+  MasterSurface<dim>::update_node_normals()
+  {
+    node_normal.assign(nodes.size(), Tensor<1, dim>());
+    const unsigned int p   = polynomial_degree;
+    auto               pos = [&](const unsigned int k) {
+      std::array<double, dim> y;
+      for (unsigned int d = 0; d < dim; ++d)
+        y[d] = x[k][d];
+      return y;
+    };
+    for (unsigned int f = 0; f < facets.size(); ++f)
+      for (unsigned int j = 0; j <= (dim == 3 ? p : 0); ++j)
+        for (unsigned int i = 0; i <= p; ++i)
+          {
+            std::array<double, dim> n;
+            if constexpr (dim == 2)
+              {
+                std::array<double, 3> N, dN;
+                lagrange(p, double(i) / p, N.data(), dN.data());
+                std::array<double, 2> a = {{0., 0.}};
+                for (unsigned int m = 0; m <= p; ++m)
+                  for (unsigned int d = 0; d < 2; ++d)
+                    a[d] += dN[m] * x[facets[f].nodes[m]][d];
+                n = {{a[1], -a[0]}};
+                normalize(n);
+              }
+            else
+              n =
+                facet_normal<double>(f, {{double(i) / p, double(j) / p}}, pos);
+            const unsigned int k = facets[f].nodes[i + (p + 1) * j];
+            for (unsigned int d = 0; d < dim; ++d)
+              node_normal[k][d] += n[d];
+          }
+    for (unsigned int k = 0; k < nodes.size(); ++k)
+      {
+        for (unsigned int d = 0; d < dim; ++d)
+          if (on_symmetry_plane[k][d])
+            node_normal[k][d] = 0.;
+        const double length = node_normal[k].norm();
+        if (length > 0.)
+          node_normal[k] /= length;
+      }
   }
 
   template <int dim>
@@ -1301,6 +1349,43 @@ namespace glide
         if (mirrored)
           G[dim * (1 + slot.at(piece.mirror_node)) + piece.mirror_axis] -=
             2. * w[j] * nrm[piece.mirror_axis];
+      }
+
+    // A direction continuous along a faceted master for the Jacobian
+    // stabilization (Linearization::spring): nu = sum_j w_j nu_j,
+    // distributed as G.
+    l.spring.reinit(0);
+    if (fraction == 0. && node_normal.size() == nodes.size())
+      {
+        Tensor<1, dim> nu;
+        for (unsigned int j = 0; j < piece.vnodes.size(); ++j)
+          {
+            const auto [k, mirrored] = piece.vnodes[j];
+            Tensor<1, dim> v         = node_normal[k];
+            if (mirrored)
+              v[piece.mirror_axis] = -v[piece.mirror_axis];
+            nu += w[j].val() * v;
+          }
+        if (nu.norm() > 0.)
+          {
+            nu /= nu.norm();
+            l.spring.reinit(n);
+            for (unsigned int d = 0; d < dim; ++d)
+              l.spring(d) = nu[d];
+            for (unsigned int j = 0; j < piece.vnodes.size(); ++j)
+              {
+                const auto [k, mirrored] = piece.vnodes[j];
+                const unsigned int base  = dim * (1 + slot.at(k));
+                for (unsigned int d = 0; d < dim; ++d)
+                  l.spring(base + d) -= (mirrored && d == piece.mirror_axis) ?
+                                          -w[j].val() * nu[d] :
+                                          w[j].val() * nu[d];
+                if (mirrored)
+                  l.spring(dim * (1 + slot.at(piece.mirror_node)) +
+                           piece.mirror_axis) -=
+                    2. * w[j].val() * nu[piece.mirror_axis];
+              }
+          }
       }
 
     l.dofs.resize(n);

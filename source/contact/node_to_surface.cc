@@ -192,18 +192,39 @@ namespace glide
   }
 
   template <int dim>
-  bool
-  NodeToSurfaceFinite<dim>::stabilizable(const Constraint<dim> &) const
+  double
+  NodeToSurfaceFinite<dim>::past_end(const Constraint<dim> &s)
   {
-    // Not for faceted deformable masters (f = 0): there the gap gradient of
-    // an open node jumps where its projection passes a vertex, and the
-    // springs along it made the faceted Hertz scene (hertz-2d-elastic.prm
-    // with f = 0) cut back 4 times where it needs none without them.
-    // Allowing them for nodes whose projection is inside a facet (not at a
-    // vertex) was tried: the block-slave Hertz cell of
-    // scene.robustness_faceted then converged, but the faceted Hertz scene
-    // cut back again (scene.hertz_2d_faceted_master).
-    return !(this->surface && this->context.parameters.smoothing == 0.);
+    Tensor<1, dim> r = s.x - s.projection.point;
+    r -= (r * s.projection.normal) * s.projection.normal;
+    return s.projection.vertex ? r.norm() : 0.;
+  }
+
+  template <int dim>
+  double
+  NodeToSurfaceFinite<dim>::held_gap_error(
+    const std::vector<Constraint<dim>> &s) const
+  {
+    double worst = 0.;
+    if (!this->surface)
+      return worst;
+    const auto &x = this->surface->get_positions();
+    for (unsigned int i = 0; i < held_piece.size(); ++i)
+      if (held_piece[i] >= 0 && s[i].found())
+        {
+          const auto &nodes =
+            this->surface
+              ->get_facets()[this->surface->get_pieces()[held_piece[i]].facet]
+              .nodes;
+          const double length = x[nodes.front()].distance(x[nodes.back()]);
+          const auto   free =
+            this->surface->project(s[i].x, 1.5 * (*this->nodes)[i].size);
+          // Beyond the end of the master: held in contact with nothing.
+          const double error =
+            free.found ? std::abs(free.gap - s[i].gap) / length : 1.;
+          worst = std::max(worst, error);
+        }
+    return worst;
   }
 
   template <int dim>
@@ -234,12 +255,7 @@ namespace glide
               if (free.found)
                 difference =
                   std::max(difference, std::abs(free.gap - s[i].gap));
-              // The distance along the piece's tangent plane from the end
-              // of the piece to the node (0 inside the piece).
-              Tensor<1, dim> r = s[i].x - s[i].projection.point;
-              r -= (r * s[i].projection.normal) * s[i].projection.normal;
-              const double past = s[i].projection.vertex ? r.norm() : 0.;
-              overshoot         = std::max(overshoot, past);
+              overshoot = std::max(overshoot, past_end(s[i]));
               std::ostringstream text;
               text << "(" << nodes[i].X << ")";
               held.push_back(text.str());

@@ -39,9 +39,10 @@ namespace glide
       Patterns::Anything(),
       "Where the condition acts: one or more comma-separated "
       "surfaces <body>.<surface> (e.g. 'block.bottom, "
-      "block.left'), or for 'force' also the name of a node "
-      "set (also for fixed, displacement and symmetry conditions). "
-      "Reactions are reported per boundary condition.");
+      "block.left') and, except for traction and pressure, node "
+      "sets (scene 'Node set' sections or sets from mesh files, "
+      "e.g. 'block.bottom, die.SYM'; a node set acts on its mesh "
+      "vertices). Reactions are reported per boundary condition.");
     prm.declare_entry(
       "Type",
       "fixed",

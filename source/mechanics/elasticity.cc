@@ -133,6 +133,26 @@ namespace glide
                               const std::string &parameter,
                               const bool         owned_only) const
   {
+    // A list that mixes node sets and surfaces: the union of the nodes of
+    // its items.
+    {
+      const auto items = Utilities::split_string_list(surface, ',');
+      if (items.size() > 1 &&
+          std::any_of(items.begin(), items.end(), [&](const std::string &n) {
+            return scene_node_sets.count(n) > 0;
+          }))
+        {
+          std::vector<
+            std::pair<std::array<types::global_dof_index, dim>, Point<dim>>>
+                                            nodes;
+          std::set<types::global_dof_index> seen;
+          for (const auto &item : items)
+            for (const auto &n : find_nodes(item, parameter, owned_only))
+              if (seen.insert(n.first[0]).second)
+                nodes.push_back(n);
+          return nodes;
+        }
+    }
     std::vector<std::vector<double>> points;
     double                           tol = 0;
     std::set<types::boundary_id>     ids;
@@ -329,23 +349,30 @@ namespace glide
 
         Load load;
         load.parameters = &bc;
-        if (scene_node_sets.count(bc.surface))
-          {
-            require(bc.is_dirichlet(),
-                    "Parameter '" + path + "/Surface' = '" + bc.surface +
-                      "' is a node set; a " +
-                      std::string(bc.type == BoundaryConditionType::pressure ?
-                                    "pressure" :
-                                    "traction") +
-                      " needs a surface <body>.<surface>.");
-            // Every process needs the constraints of its ghost DoFs too.
-            load.nodes       = find_nodes(bc.surface, path + "/Surface", false);
-            load.on_node_set = true;
-          }
-        else
-          for (const auto &name : Utilities::split_string_list(bc.surface, ','))
+        // The list may mix node sets (their vertices) and surfaces (all
+        // DoFs on their faces, mid-side nodes included).
+        std::string sets;
+        for (const auto &name : Utilities::split_string_list(bc.surface, ','))
+          if (scene_node_sets.count(name))
+            {
+              require(bc.is_dirichlet(),
+                      "Parameter '" + path + "/Surface' = '" + name +
+                        "' is a node set; a " +
+                        std::string(bc.type == BoundaryConditionType::pressure ?
+                                      "pressure" :
+                                      "traction") +
+                        " needs a surface <body>.<surface>.");
+              sets += (sets.empty() ? "" : ",") + name;
+            }
+          else
             for (const auto id : mesh.surface(name, path + "/Surface"))
               load.ids.insert(id);
+        if (!sets.empty())
+          {
+            // Every process needs the constraints of its ghost DoFs too.
+            load.nodes       = find_nodes(sets, path + "/Surface", false);
+            load.on_node_set = true;
+          }
         if (bc.type == BoundaryConditionType::displacement && !exact)
           load.function = parse_function(bc.function, dim, path + "/Function");
         if (bc.type == BoundaryConditionType::traction)
@@ -507,8 +534,9 @@ namespace glide
                           c.set_inhomogeneity(node_dofs[comp], value[comp]);
                         }
                   }
-                continue;
               }
+            if (d.ids.empty())
+              continue;
             for (const auto id : d.ids)
               functions[id] = f;
             VectorTools::interpolate_boundary_values(
@@ -889,22 +917,26 @@ namespace glide
       {
         const std::string &name = d.parameters->name;
         // Only the components this condition constrains.
-        const ComponentMask mask = component_mask(*d.parameters);
-        Tensor<1, dim>      sum;
+        const ComponentMask               mask = component_mask(*d.parameters);
+        Tensor<1, dim>                    sum;
+        std::set<types::global_dof_index> counted;
         if (d.on_node_set)
           {
-            // A node set: its owned vertex DoFs.
+            // Node sets: their owned vertex DoFs.
             for (const auto &[node_dofs, x] : d.nodes)
               for (unsigned int c = 0; c < dim; ++c)
-                if (mask[c] && owned.is_element(node_dofs[c]))
+                if (mask[c] && owned.is_element(node_dofs[c]) &&
+                    counted.insert(node_dofs[c]).second)
                   sum[c] += F(node_dofs[c]);
+          }
+        if (d.ids.empty())
+          {
             result[name] = Utilities::MPI::sum(sum, comm);
             continue;
           }
         const IndexSet dofs =
           DoFTools::extract_boundary_dofs(dof_handler, mask, d.ids);
         std::vector<types::global_dof_index> local_dofs(fe.n_dofs_per_cell());
-        std::set<types::global_dof_index>    counted;
         for (const auto &cell : dof_handler.active_cell_iterators())
           if (cell->is_locally_owned())
             {

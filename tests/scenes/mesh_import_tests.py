@@ -107,6 +107,36 @@ def case_node_set_points():
     close(rows[-1]["reaction_hold_x"], -2., 1e-9, "the support balances the force on both points")
 
 
+def case_mixed_node_set_and_surface():
+    """P2 (boundary conditions): one condition's 'Surface' list may mix a
+    node set from a mesh file and a surface (before, each worked alone but
+    the list 'lower.FIXED, upper.SLAVE' was 'no such surface'). On
+    block-on-block-inp.prm, the condition 'hold' on 'lower.FIXED,
+    upper.SLAVE' (the lower body's bottom nodes and the upper body's bottom
+    faces) must be the same problem as two conditions, 'hold' on
+    'upper.SLAVE' and 'fix' on 'lower.FIXED': the mixed condition's
+    reaction is the sum of the two, and the push's reaction is the same.
+    Without the node set the lower body would not be held (an input
+    error); without the surface the upper body would press on the lower
+    one, and the reactions would differ."""
+    scene = os.path.join(SCENES, "block-on-block-inp.prm")
+    mixed, _, _ = st.run(scene, "Output/Write VTU=false",
+                         "Boundary condition hold/Surface=lower.FIXED, upper.SLAVE", name="mixed")
+    split, _, _ = st.run(scene, "Output/Write VTU=false", "Boundary conditions=hold, push, fix",
+                         "Boundary condition hold/Surface=upper.SLAVE", "Boundary condition fix/Surface=lower.FIXED",
+                         "Boundary condition fix/Type=fixed", name="split")
+    check(len(mixed) == len(split) == 2, "both runs finish their 2 steps")
+    for a, b in zip(mixed, split):
+        t = a["load_factor"]
+        check(abs(a["reaction_hold_y"]) > 0, f"the mixed support carries load at t={t}")
+        close(a["reaction_hold_y"], b["reaction_hold_y"] + b["reaction_fix_y"], 1e-9,
+              f"mixed reaction = sum of the two conditions' at t={t}")
+        close(a["reaction_push_y"], b["reaction_push_y"], 1e-9, f"same push reaction at t={t}")
+        # To the solver's tolerance (the contact force at the fixed slave
+        # nodes is resolved to it): measured 2e-8.
+        close(a["reaction_hold_y"], -a["reaction_push_y"], 1e-6, f"the support balances the push at t={t}")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--glide", required=True)

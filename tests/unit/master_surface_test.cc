@@ -361,6 +361,117 @@ TEST(MasterSurface, FacetedCornerUsesTheFacetNormals)
   EXPECT_GE(corners, 3u);
 }
 
+// Issue 12 / R16.2: the direction of the Jacobian stabilization of open
+// nodes on a faceted master (Linearization::spring) does not jump where a
+// projection passes a vertex, while the gap gradient does (the two facets'
+// normals); at the vertex it is the mean of the two normals; a smoothed
+// master uses the gap gradient itself (no spring).
+TEST(MasterSurface, SpringDirectionIsContinuousAtFacetedCorners)
+{
+  Fixture<2>  s(ball_on_block(2, 0., 1, "hard"), "spring.prm");
+  const auto  ball   = master_of<2>(s, "ball.curved", 0.);
+  const auto &facets = ball->get_facets();
+  const auto &x      = ball->get_positions();
+  const std::array<types::global_dof_index, 2> slave_dofs{{0, 1}};
+  auto                                         at = [&](const Point<2> &xs) {
+    const auto p = ball->project(xs);
+    EXPECT_TRUE(p.found);
+    MasterSurface<2>::Linearization l;
+    ball->linearize(p, xs, slave_dofs, l);
+    EXPECT_EQ(l.spring.size(), l.dofs.size());
+    return l;
+  };
+  unsigned int corners = 0;
+  for (unsigned int i = 0; i < facets.size(); ++i)
+    {
+      const int j = facets[i].neighbours[1];
+      if (j < 0)
+        continue;
+      const unsigned int v = facets[i].nodes.back();
+      auto unit            = [](const Tensor<1, 2> &a) { return a / a.norm(); };
+      const Tensor<1, 2> ti = unit(x[v] - x[facets[i].nodes[0]]);
+      const Tensor<1, 2> tj = unit(x[facets[j].nodes.back()] - x[v]);
+      const Tensor<1, 2> ni({ti[1], -ti[0]}), nj({tj[1], -tj[0]});
+      const Tensor<1, 2> b = unit(ni + nj);
+      const double       h = ball->facet_size();
+      for (const double eps : {1e-3, 1e-5})
+        {
+          // Just inside facet i and just inside facet j, 0.05 h outside.
+          const auto   li = at(x[v] - eps * h * ti + 0.05 * h * ni);
+          const auto   lj = at(x[v] + eps * h * tj + 0.05 * h * nj);
+          Tensor<1, 2> si, sj, gi, gj;
+          for (unsigned int d = 0; d < 2; ++d)
+            {
+              si[d] = li.spring(d);
+              sj[d] = lj.spring(d);
+              gi[d] = li.dgap(d);
+              gj[d] = lj.dgap(d);
+            }
+          EXPECT_NEAR((gi - gj).norm(), (ni - nj).norm(), 1e-9) << i;
+          EXPECT_LT((si - sj).norm(), 4. * eps) << i << " eps " << eps;
+          EXPECT_NEAR((si - b).norm(), 0., 2. * eps) << i;
+          EXPECT_NEAR(si.norm(), 1., 1e-12);
+        }
+      // At the vertex (a clamped projection): the mean normal, with the
+      // whole master share on the vertex node.
+      const auto l = at(x[v] + 0.05 * h * b);
+      for (unsigned int d = 0; d < 2; ++d)
+        EXPECT_NEAR(l.spring(d), b[d], 1e-12);
+      double master = 0.;
+      for (unsigned int a = 2; a < l.dofs.size(); ++a)
+        master += l.spring(a) * b[a % 2];
+      EXPECT_NEAR(master, -1., 1e-12);
+      ++corners;
+    }
+  EXPECT_GE(corners, 3u);
+
+  Fixture<2>  smooth(ball_on_block(2, 0.2, 1, "hard"), "spring_smooth.prm");
+  const auto  smoothed = master_of<2>(smooth, "ball.curved", 0.2);
+  const auto &f0       = smoothed->get_facets()[0].nodes;
+  const auto &y        = smoothed->get_positions();
+  const Tensor<1, 2> a = y[f0.back()] - y[f0[0]];
+  const Point<2> xs = y[f0[0]] + 0.5 * a + 0.05 * Tensor<1, 2>({a[1], -a[0]});
+  const auto     p  = smoothed->project(xs);
+  ASSERT_TRUE(p.found);
+  MasterSurface<2>::Linearization l;
+  smoothed->linearize(p, xs, slave_dofs, l);
+  EXPECT_EQ(l.spring.size(), 0u);
+}
+
+// Issue 12: Contact::held_gap_error(), by which the driver rejects a step
+// whose held node left the corner it alternated at. A slave node held on
+// the piece its free projection finds has the free gap (0); held on a
+// piece of the master at the other end of the ball (the four facets of
+// this ball turn by 90 degrees in all), its gap to that facet's plane is
+// off by more than a facet length; without holds, 0.
+TEST(MasterSurface, HeldGapErrorIsMeasuredInFacetLengths)
+{
+  Fixture<2> s(ball_on_block(2, 0., 1, "hard"), "overshoot.prm");
+  VectorType U(s.e.locally_owned(), MPI_COMM_WORLD);
+  s.contact.set_time(0.);
+  const auto status = s.contact.status(U);
+  int        pieces = 0;
+  for (const auto &st : status)
+    pieces = std::max(pieces, st.piece + 1);
+  unsigned int checked = 0;
+  for (unsigned int i = 0; i < status.size(); ++i)
+    if (status[i].holdable && status[i].piece >= 0)
+      {
+        s.contact.hold({{i, status[i].piece}});
+        EXPECT_EQ(s.contact.held_gap_error(U), 0.) << i;
+        // The piece furthest from the node's own (the ball has four
+        // facets at this refinement; a piece three facets away).
+        const int other = status[i].piece < pieces / 2 ? pieces - 1 : 0;
+        s.contact.release_holds();
+        s.contact.hold({{i, other}});
+        EXPECT_GT(s.contact.held_gap_error(U), 1.) << i;
+        s.contact.release_holds();
+        EXPECT_EQ(s.contact.held_gap_error(U), 0.) << i;
+        ++checked;
+      }
+  EXPECT_GE(checked, 2u);
+}
+
 // R1.1 for curved facets: the smoothed faceted circle (the ball's curved
 // surface, center (0.5, 1.95), radius 1, four facets) stays as close to
 // the circle as the facets themselves. Measured at points 0.01 outside

@@ -104,6 +104,13 @@ namespace glide
     void
     release_holds();
 
+    /// At iterate @p U, the largest difference between a held node's gap
+    /// (to the plane of the facet it is held on) and its gap to the master
+    /// (the free projection's), relative to that facet's length (all pairs
+    /// and processes; 0 without holds).
+    double
+    held_gap_error(const VectorType &U) const;
+
     /// Turn the stabilization of stabilization_weight() on (the default)
     /// or off (to compare the Jacobian with finite differences).
     void
@@ -175,10 +182,7 @@ namespace glide
      * iterations with a line-search retry, 5 with this). The weighted gap of
      * the nodes next to the first contact point of two surfaces with relative
      * curvature kappa is about kappa h^2 / 6, so 1 % of h covers them on any
-     * mesh that resolves the curvature (kappa h <= 0.06). Not on faceted
-     * deformable masters, where Formulation::stabilizable() is false (the
-     * gap gradient jumps at vertices; closing the nodes near the first
-     * contact point made the faceted Hertz scene cycle). It changes the
+     * mesh that resolves the curvature (kappa h <= 0.06). It changes the
      * starting point only, never the residual (R16.1); nodes closed wrongly
      * open in the next iteration. Returns the number of nodes closed (all
      * processes).
@@ -288,7 +292,6 @@ namespace glide
      */
     double
     stabilization_weight(
-      const Pair                                    &pair,
       const SlaveNode<dim>                          &node,
       const Constraint<dim>                         &s,
       const typename ContactEnforcement<dim>::Force &f) const;

@@ -181,10 +181,11 @@ namespace glide
     virtual unsigned int
     n_held() const;
 
-    /// False where the Jacobian stabilization of the open constraint @p s
-    /// must not be used (see Contact::stabilization_weight()).
-    virtual bool
-    stabilizable(const Constraint<dim> &s) const;
+    /// The largest difference between a held node's gap (constraints @p s,
+    /// measured to the plane of the facet it is held on) and its gap to
+    /// the master, relative to that facet's length (0 without holds).
+    virtual double
+    held_gap_error(const std::vector<Constraint<dim>> &s) const;
 
     /// Constraints that fell back to a simpler formulation (R9.4).
     virtual unsigned int

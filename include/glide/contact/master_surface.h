@@ -152,6 +152,12 @@ namespace glide
       /// then leave dgap and dforce zero (sized as force) and save the
       /// cost of the derivatives (mortar: automatic differentiation).
       bool derivatives = true;
+      /// Where dgap jumps (a faceted master, f = 0: the facet normal jumps
+      /// at a vertex), a direction for the Jacobian stabilization of open
+      /// nodes that is continuous along the surface: the slave node gets
+      /// nu, master node j gets -w_j nu, with nu the interpolated averaged
+      /// nodal normal. Empty where dgap itself serves.
+      dealii::Vector<double> spring;
     };
 
     /// The master surface made of the boundary faces with ids @p ids.
@@ -331,9 +337,15 @@ namespace glide
     /// Per node: does it carry XSYMM/YSYMM/ZSYMM (component a fixed on a
     /// symmetry plane)? In 3D the blended normal there lies in the plane.
     std::vector<std::array<bool, dim>> on_symmetry_plane;
-    double                             fraction;
-    double                             max_size          = 0.;
-    unsigned int                       polynomial_degree = 1;
+    /// Faceted masters (f = 0): per node, the mean of the normals of the
+    /// facets at it (current configuration; in a symmetry plane, as the
+    /// mirrored surface would give), for Linearization::spring.
+    std::vector<dealii::Tensor<1, dim>> node_normal;
+    void
+                 update_node_normals();
+    double       fraction;
+    double       max_size          = 0.;
+    unsigned int polynomial_degree = 1;
     using Leaf = std::pair<dealii::BoundingBox<dim>, unsigned int>;
     dealii::RTree<Leaf> tree;
   };

@@ -66,8 +66,8 @@ namespace glide
     unsigned int
     n_held() const override;
 
-    bool
-    stabilizable(const Constraint<dim> &s) const override;
+    double
+    held_gap_error(const std::vector<Constraint<dim>> &s) const override;
 
     void
     commit_step(const VectorType                   &U,
@@ -77,6 +77,11 @@ namespace glide
                 const double                        t_new) override;
 
   private:
+    /// Distance of constraint @p s from the end of its piece along the
+    /// piece's tangent plane (0 inside the piece).
+    static double
+    past_end(const Constraint<dim> &s);
+
     /// Per node: master nodes coupled in the sparsity pattern (sorted).
     std::vector<std::vector<unsigned int>> coupled;
     /// Per node: position and projection at the end of the last converged

@@ -275,10 +275,11 @@ namespace glide
     {
       const BoundaryConditionParameters   *parameters;
       std::set<dealii::types::boundary_id> ids;
-      /// True if the condition acts on a node set (then `nodes` holds this
-      /// process's vertices of it, possibly none).
+      /// True if the condition acts on node sets (then `nodes` holds this
+      /// process's vertices of them, possibly none); `ids` holds the
+      /// surfaces of the same condition's list, if any.
       bool on_node_set = false;
-      /// For conditions on a node set: vertex DoFs and positions.
+      /// For conditions on node sets: vertex DoFs and positions.
       std::vector<std::pair<std::array<dealii::types::global_dof_index, dim>,
                             dealii::Point<dim>>>
                                                    nodes;
