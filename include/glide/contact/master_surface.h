@@ -319,6 +319,10 @@ namespace glide
     bool
     beyond_end(const Projection &p) const;
 
+    /// node_normal for the current positions (faceted masters).
+    void
+    update_node_normals();
+
     /// Nodes of the facets that share a node with @p facet (3D smoothing).
     std::vector<unsigned int>
     patch(const unsigned int facet) const;
@@ -341,11 +345,9 @@ namespace glide
     /// facets at it (current configuration; in a symmetry plane, as the
     /// mirrored surface would give), for Linearization::spring.
     std::vector<dealii::Tensor<1, dim>> node_normal;
-    void
-                 update_node_normals();
-    double       fraction;
-    double       max_size          = 0.;
-    unsigned int polynomial_degree = 1;
+    double                              fraction;
+    double                              max_size          = 0.;
+    unsigned int                        polynomial_degree = 1;
     using Leaf = std::pair<dealii::BoundingBox<dim>, unsigned int>;
     dealii::RTree<Leaf> tree;
   };
