@@ -9,6 +9,8 @@
 // are checked by round trips, derivatives against central differences.
 #include <glide/contact/mortar_geometry.h>
 
+#include <deal.II/base/exceptions.h>
+
 #include <Sacado.hpp>
 #include <gtest/gtest.h>
 
@@ -16,6 +18,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace mg = glide::mortar_geometry;
@@ -171,51 +174,167 @@ TEST(MortarGeometry, IntervalOverlap)
   EXPECT_EQ(with_derivatives.begin.dx(1), 0.);
 }
 
-// R14.2: the 7-point rule is exact for degree 5. On the reference triangle
-// (0,0), (1,0), (0,1) (area 1/2) the integral of x^a y^b is
-// a! b! / (a + b + 2)! (Dirichlet integral); every monomial of degree <= 5
-// must come out to 1e-14 relative. A degree-5 rule with 7 points cannot be
-// exact for all of degree 6: at least one degree-6 monomial must miss by
-// more than 1e-6 relative, which shows that this check tells degrees apart.
-TEST(MortarGeometry, TriangleRuleIsExactForDegreeFive)
+// R14.2: the triangle rules (deal.II's Witherden-Vincent rules) of the
+// degrees mortar integration uses, 5 (7 points), 9 (19) and 13 (37), are
+// positive rules with their points inside, and exact for their degree. On
+// the reference triangle (0,0), (1,0), (0,1) (area 1/2) the integral of
+// x^a y^b is a! b! / (a + b + 2)! (Dirichlet integral); every monomial of
+// degree <= d must come out to 1e-13 relative. A rule of degree d cannot be
+// exact for all of degree d + 1: at least one such monomial must miss by
+// more than 1e-8 relative, which shows that the check tells degrees apart.
+TEST(MortarGeometry, TriangleRulesAreExactForTheirDegree)
 {
-  const auto &rule       = mg::triangle_rule();
-  double      weight_sum = 0.;
-  for (const auto &r : rule)
+  for (const auto &[degree, size] :
+       {std::pair<int, std::size_t>{5, 7}, {9, 19}, {13, 37}})
     {
-      weight_sum += r.weight;
-      EXPECT_NEAR(r.barycentric[0] + r.barycentric[1] + r.barycentric[2],
-                  1.,
-                  1e-15);
-      for (const double b : r.barycentric)
-        EXPECT_GT(b, 0.); // all points inside: a positive rule
-    }
-  EXPECT_NEAR(weight_sum, 1., 1e-15);
+      const auto &rule = mg::triangle_rule(degree);
+      EXPECT_EQ(rule.size(), size) << "degree " << degree;
+      double weight_sum = 0.;
+      for (const auto &r : rule)
+        {
+          weight_sum += r.weight;
+          EXPECT_GT(r.weight, 0.);
+          EXPECT_NEAR(r.barycentric[0] + r.barycentric[1] + r.barycentric[2],
+                      1.,
+                      1e-15);
+          for (const double b : r.barycentric)
+            EXPECT_GT(b, 0.); // all points inside
+        }
+      EXPECT_NEAR(weight_sum, 1., 1e-14);
 
-  const auto rule_integral = [&rule](const int a, const int b) {
-    double sum = 0.;
-    for (const auto &r : rule)
-      // Barycentric (l0, l1, l2) of the vertices (0,0), (1,0), (0,1).
-      sum += 0.5 * r.weight * std::pow(r.barycentric[1], a) *
-             std::pow(r.barycentric[2], b);
-    return sum;
-  };
-  for (int a = 0; a <= 5; ++a)
-    for (int b = 0; a + b <= 5; ++b)
-      {
-        const double exact = factorial(a) * factorial(b) / factorial(a + b + 2);
-        EXPECT_NEAR(rule_integral(a, b), exact, 1e-14 * exact)
-          << "x^" << a << " y^" << b;
-      }
-  double worst_degree_6 = 0.;
-  for (int a = 0; a <= 6; ++a)
-    {
-      const double exact = factorial(a) * factorial(6 - a) / factorial(8);
-      worst_degree_6 =
-        std::max(worst_degree_6,
-                 std::abs(rule_integral(a, 6 - a) - exact) / exact);
+      const auto rule_integral = [&rule](const int a, const int b) {
+        double sum = 0.;
+        for (const auto &r : rule)
+          // Barycentric (l0, l1, l2) of the vertices (0,0), (1,0), (0,1).
+          sum += 0.5 * r.weight * std::pow(r.barycentric[1], a) *
+                 std::pow(r.barycentric[2], b);
+        return sum;
+      };
+      for (int a = 0; a <= degree; ++a)
+        for (int b = 0; a + b <= degree; ++b)
+          {
+            const double exact =
+              factorial(a) * factorial(b) / factorial(a + b + 2);
+            EXPECT_NEAR(rule_integral(a, b), exact, 1e-13 * exact)
+              << "degree " << degree << ": x^" << a << " y^" << b;
+          }
+      double worst_next = 0.;
+      for (int a = 0; a <= degree + 1; ++a)
+        {
+          const double exact =
+            factorial(a) * factorial(degree + 1 - a) / factorial(degree + 3);
+          worst_next =
+            std::max(worst_next,
+                     std::abs(rule_integral(a, degree + 1 - a) - exact) /
+                       exact);
+        }
+      EXPECT_GT(worst_next, 1e-8) << "degree " << degree;
     }
-  EXPECT_GT(worst_degree_6, 1e-6);
+  EXPECT_EQ(&mg::triangle_rule(), &mg::triangle_rule(5));
+  EXPECT_THROW(mg::triangle_rule(mg::max_triangle_rule_degree + 1),
+               dealii::ExceptionBase);
+}
+
+// R14.2, R14.5: on a general (non-parallelogram) quadrilateral the shape
+// functions are rational functions of the plane's coordinates (through the
+// inverse bilinear map), so a polygon rule integrates them only
+// approximately. The mortar code (mortar_3d.cc, rule_degree()) picks the
+// rule by the quadrilateral's bilinear defect delta; this checks the error
+// estimates it relies on. Quadrilateral: the unit square under a shear,
+// one corner then moved by delta times its diagonal; the exact
+// int N_k dA by a 4 x 4 Gauss rule in the parameters (N_k det J is a
+// polynomial of degree 2 in each parameter there). The largest relative
+// error over six directions of the move, measured (2026-12-03):
+//   delta   degree 5  degree 7  degree 11  degree 13
+//   0.002     2e-14
+//   0.005     7e-13
+//   0.03      1e-9      3e-14
+//   0.05                7e-13
+//   0.1       1e-7      5e-11     2e-15
+//   0.15                          1e-13
+//   0.2       4e-6      4e-9      5e-12      3e-13
+//   0.3       3e-5      6e-8      2e-9       3e-10
+// Checked: each rule within 1e-12 up to the largest delta for which
+// rule_degree() picks it, and the next rule needed beyond;
+// and that the image of the parameter square [0.5 - sigma/2, 0.5 +
+// sigma/2]^2 fares like a whole facet with defect sigma delta.
+TEST(MortarGeometry, ShapeFunctionIntegralsOnDistortedQuadrilaterals)
+{
+  const auto largest_error =
+    [](const double delta, const unsigned int degree, const double sigma = 1.) {
+      // The piece: the image of [lo, lo + sigma]^2 in the parameters.
+      const double     lo = 0.5 - 0.5 * sigma;
+      std::array<P, 4> v{{{{0., 0.}}, {{1., 0.2}}, {{0.3, 1.}}, {{1.3, 1.2}}}};
+      const double     diagonal = std::hypot(1.3, 1.2);
+      double           worst    = 0.;
+      for (const double angle : {0., 1., 2., 3., 4., 5.})
+        {
+          auto w = v;
+          w[3][0] += delta * diagonal * std::cos(angle);
+          w[3][1] += delta * diagonal * std::sin(angle);
+          const auto N = [](const P &xi) {
+            return std::array<double, 4>{{(1. - xi[0]) * (1. - xi[1]),
+                                          xi[0] * (1. - xi[1]),
+                                          (1. - xi[0]) * xi[1],
+                                          xi[0] * xi[1]}};
+          };
+          // Exact: Gauss in the parameters.
+          std::array<double, 4> exact{{0., 0., 0., 0.}};
+          const double          g[4]  = {0.5 - 0.5 * 0.8611363115940526,
+                                         0.5 - 0.5 * 0.3399810435848563,
+                                         0.5 + 0.5 * 0.3399810435848563,
+                                         0.5 + 0.5 * 0.8611363115940526};
+          const double          gw[4] = {0.5 * 0.3478548451374538,
+                                         0.5 * 0.6521451548625461,
+                                         0.5 * 0.6521451548625461,
+                                         0.5 * 0.3478548451374538};
+          for (unsigned int i = 0; i < 4; ++i)
+            for (unsigned int j = 0; j < 4; ++j)
+              {
+                const double s = lo + sigma * g[i], t = lo + sigma * g[j];
+                double       J[2][2];
+                for (unsigned int d = 0; d < 2; ++d)
+                  {
+                    J[d][0] =
+                      (1. - t) * (w[1][d] - w[0][d]) + t * (w[3][d] - w[2][d]);
+                    J[d][1] =
+                      (1. - s) * (w[2][d] - w[0][d]) + s * (w[3][d] - w[1][d]);
+                  }
+                const double det  = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+                const auto   n_st = N(P{{s, t}});
+                for (unsigned int k = 0; k < 4; ++k)
+                  exact[k] += sigma * sigma * gw[i] * gw[j] * det * n_st[k];
+              }
+          std::array<P, 4> piece;
+          for (unsigned int c = 0; c < 4; ++c)
+            piece[c] = mg::bilinear_map(
+              w, P{{lo + sigma * (c % 2), lo + sigma * double(c / 2)}});
+          const auto approximate = mg::integrate(
+            mg::quadrilateral_polygon(piece),
+            [&](const P &x) {
+              const auto inverse = mg::inverse_bilinear_map(w, x);
+              EXPECT_EQ(inverse.status, mg::InverseMapStatus::inside);
+              return N(inverse.xi);
+            },
+            degree);
+          for (unsigned int k = 0; k < 4; ++k)
+            worst =
+              std::max(worst, std::abs(approximate[k] - exact[k]) / exact[k]);
+        }
+      return worst;
+    };
+  EXPECT_LT(largest_error(0., 5), 1e-14);
+  EXPECT_LT(largest_error(5e-3, 5), 1e-12);
+  EXPECT_GT(largest_error(0.05, 5), 1e-10);
+  EXPECT_LT(largest_error(0.05, 7), 1e-12);
+  EXPECT_GT(largest_error(0.15, 7), 1e-10);
+  EXPECT_LT(largest_error(0.15, 11), 1e-12);
+  EXPECT_LT(largest_error(0.2, 13), 1e-12);
+  // A piece of relative size sigma behaves like a whole facet with
+  // sigma delta (bilinear_defect() in mortar_3d.cc relies on it).
+  EXPECT_LT(largest_error(0.3, 11, 0.5), 1e-12);
+  EXPECT_LT(largest_error(0.4, 7, 0.125), 1e-12);
+  EXPECT_GT(largest_error(0.4, 7, 0.5), 1e-10);
 }
 
 // R14.2: Steger's exact moment formula (the reference of the next test)

@@ -19,6 +19,9 @@
 /// `using std::sqrt; sqrt(x)` lets argument-dependent lookup pick Sacado's
 /// overloads.
 
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/quadrature_lib.h>
+
 #include <Sacado.hpp>
 
 #include <algorithm>
@@ -26,6 +29,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -569,43 +573,58 @@ namespace glide
       double weight;
     };
 
-    /// The 7-point triangle rule exact for polynomials of degree 5 (Radon
-    /// 1948; Stroud's T2:5-1; Dunavant 1985, degree 5; Strang and Fix):
-    /// the centroid with weight 9/40, and the orbits (a, a, 1 - 2a) of
-    /// `a = (6 -+ sqrt 15)/21` with weights `(155 -+ sqrt 15)/1200`. The
-    /// unit tests check it monomial by monomial against
-    /// `int_T x^a y^b = a! b! / (a + b + 2)!` on the reference triangle.
-    inline const std::array<TriangleRulePoint, 7> &
-    triangle_rule()
+    /// The largest degree triangle_rule() provides.
+    constexpr unsigned int max_triangle_rule_degree = 13;
+
+    /// A triangle rule exact for polynomials of degree @p degree (odd, at
+    /// most max_triangle_rule_degree; an even degree gets the next odd
+    /// one): deal.II's Witherden-Vincent rule with (degree + 1) / 2 points
+    /// per direction, in barycentric coordinates with weights as fractions
+    /// of the area. All points lie inside the triangle and all weights are
+    /// positive. Degree 5 is the 7-point rule of Radon (Stroud's T2:5-1),
+    /// degree 11 has 28 points. The unit tests check them monomial by
+    /// monomial against `int_T x^a y^b = a! b! / (a + b + 2)!` on the
+    /// reference triangle.
+    inline const std::vector<TriangleRulePoint> &
+    triangle_rule(const unsigned int degree = 5)
     {
-      static const std::array<TriangleRulePoint, 7> rule = [] {
-        const double s  = std::sqrt(15.);
-        const double a1 = (6. - s) / 21., b1 = 1. - 2. * a1;
-        const double a2 = (6. + s) / 21., b2 = 1. - 2. * a2;
-        const double w1 = (155. - s) / 1200., w2 = (155. + s) / 1200.;
-        return std::array<TriangleRulePoint, 7>{
-          {{{{1. / 3., 1. / 3., 1. / 3.}}, 9. / 40.},
-           {{{a1, a1, b1}}, w1},
-           {{{a1, b1, a1}}, w1},
-           {{{b1, a1, a1}}, w1},
-           {{{a2, a2, b2}}, w2},
-           {{{a2, b2, a2}}, w2},
-           {{{b2, a2, a2}}, w2}}};
+      static const auto rules = [] {
+        std::array<std::vector<TriangleRulePoint>,
+                   (max_triangle_rule_degree + 1) / 2>
+          r;
+        for (unsigned int n = 1; n <= r.size(); ++n)
+          {
+            const dealii::QWitherdenVincentSimplex<2> q(n);
+            for (unsigned int i = 0; i < q.size(); ++i)
+              {
+                const auto &x = q.point(i);
+                // deal.II's reference triangle (0,0), (1,0), (0,1) has
+                // area 1/2.
+                r[n - 1].push_back(
+                  TriangleRulePoint{{{1. - x[0] - x[1], x[0], x[1]}},
+                                    2. * q.weight(i)});
+              }
+          }
+        return r;
       }();
-      return rule;
+      AssertThrow(degree >= 1 && degree <= max_triangle_rule_degree,
+                  dealii::ExcMessage("no triangle rule of degree " +
+                                     std::to_string(degree)));
+      return rules[(degree + 1) / 2 - 1];
     }
 
     /// Quadrature points on the convex polygon @p polygon (either
     /// orientation): the polygon is split into triangles from its
-    /// vertex_mean(), one per edge, and each gets triangle_rule(). Exact for
-    /// polynomials of degree up to 5 on convex polygons (each triangle is
-    /// then non-inverted and the rule is exact on each). Callers evaluate
+    /// vertex_mean(), one per edge, and each gets triangle_rule(@p degree).
+    /// Exact for polynomials of degree up to @p degree on convex polygons
+    /// (each triangle is then non-inverted and the rule is exact on each).
+    /// Callers evaluate
     /// several integrands (shape functions, gaps) at the same points. An
     /// empty polygon (no overlap) has no points. Triangles of zero area (from
     /// collinear vertices that clipping may leave) give zero weights.
     template <typename T>
     std::vector<QuadraturePoint<T>>
-    quadrature(const Polygon<T> &polygon)
+    quadrature(const Polygon<T> &polygon, const unsigned int degree = 5)
     {
       std::vector<QuadraturePoint<T>> points;
       const std::size_t               n = polygon.size();
@@ -614,7 +633,7 @@ namespace glide
       // Signed triangle areas times this are positive for either orientation.
       const double orientation = value(signed_area(polygon)) < 0. ? -1. : 1.;
       const Point2D<T> c       = vertex_mean(polygon);
-      const auto      &rule    = triangle_rule();
+      const auto      &rule    = triangle_rule(degree);
       points.reserve(rule.size() * n);
       for (std::size_t i = 0; i < n; ++i)
         {
@@ -649,12 +668,14 @@ namespace glide
 
     /// The integral over the convex polygon @p polygon of @p f, a function
     /// of a Point2D<T> that returns a scalar or a std::array of scalars (so
-    /// that several integrands share one evaluation), by quadrature().
-    /// Exact if @p f is a polynomial of degree up to 5. An empty polygon
-    /// gives zero.
+    /// that several integrands share one evaluation), by
+    /// quadrature(@p polygon, @p degree). Exact if @p f is a polynomial of
+    /// degree up to @p degree. An empty polygon gives zero.
     template <typename T, typename F>
     auto
-    integrate(const Polygon<T> &polygon, const F &f)
+    integrate(const Polygon<T>  &polygon,
+              const F           &f,
+              const unsigned int degree = 5)
     {
       using Result = std::decay_t<decltype(f(std::declval<Point2D<T>>()))>;
       Result sum{};
@@ -663,7 +684,7 @@ namespace glide
           x = 0.;
       else
         sum = 0.;
-      for (const auto &q : quadrature(polygon))
+      for (const auto &q : quadrature(polygon, degree))
         {
           const Result value_at_point = f(q.point);
           if constexpr (internal::IsStdArray<Result>::value)
