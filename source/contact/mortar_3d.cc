@@ -5,7 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <type_traits>
+#include <unordered_map>
 
 namespace glide
 {
@@ -311,27 +314,81 @@ namespace glide
     /// chain rule (the same derivatives, at a fraction of the cost of
     /// differentiating every quadrature point with respect to all the
     /// patch's coordinates).
+    /// The moments of a pair in the fixed-size Fad of pair_moments_in().
+    using LocalFad = Sacado::Fad::SFad<double, 36>;
+
+    /// 36 NaN: the inputs of a new memo entry, equal to none.
+    std::array<double, 36>
+    no_inputs()
+    {
+      std::array<double, 36> a;
+      a.fill(std::numeric_limits<double>::quiet_NaN());
+      return a;
+    }
+
+    /// A memo entry: the 36 input values (X, n, Y) and the moments.
+    template <typename S>
+    struct PairEntry
+    {
+      std::array<double, 36> inputs = no_inputs();
+      PairMoments<S>         moments;
+    };
+
+    /// The memo of pair moments: in double (residuals) and in LocalFad
+    /// (Jacobians), keyed by slave facet and master facet.
+    struct PairMemo
+    {
+      std::unordered_map<std::uint64_t, PairEntry<double>>   plain;
+      std::unordered_map<std::uint64_t, PairEntry<LocalFad>> local;
+    };
+
+    /// pair_moments() with memo: the entry of @p key in @p memo if its
+    /// inputs are @p inputs, else computed by @p compute and stored.
+    template <typename S, typename F>
+    const PairMoments<S> &
+    remembered(std::unordered_map<std::uint64_t, PairEntry<S>> &memo,
+               const std::uint64_t                              key,
+               const std::array<double, 36>                    &inputs,
+               const F                                         &compute)
+    {
+      auto &e = memo[key];
+      if (e.inputs != inputs) // a new entry's NaN inputs equal nothing
+        {
+          e.inputs = inputs;
+          compute(e.moments);
+        }
+      return e.moments;
+    }
+
     template <typename T>
     void
     pair_moments_in(const std::array<std::array<T, 3>, 4> &X,
                     const std::array<std::array<T, 3>, 4> &n,
                     const std::array<std::array<T, 3>, 4> &Y,
-                    PairMoments<T>                        &r)
+                    PairMoments<T>                        &r,
+                    const std::uint64_t                    key,
+                    PairMemo                              &memo)
     {
+      std::array<double, 36> inputs;
+      for (unsigned int v = 0; v < 4; ++v)
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            inputs[3 * v + d]      = value(X[v][d]);
+            inputs[12 + 3 * v + d] = value(n[v][d]);
+            inputs[24 + 3 * v + d] = value(Y[v][d]);
+          }
       if constexpr (std::is_same_v<T, double>)
-        pair_moments(X, n, Y, r);
+        r = remembered(memo.plain, key, inputs, [&](PairMoments<double> &m) {
+          pair_moments(X, n, Y, m);
+        });
       else
         {
-          using L = Sacado::Fad::SFad<double, 36>;
-          std::array<std::array<L, 3>, 4> Xl, nl, Yl;
-          std::array<const T *, 36>       in;
+          using L = LocalFad;
+          std::array<const T *, 36> in;
           for (unsigned int v = 0; v < 4; ++v)
             for (unsigned int d = 0; d < 3; ++d)
               {
                 const unsigned int i = 3 * v + d;
-                Xl[v][d]             = L(36, i, value(X[v][d]));
-                nl[v][d]             = L(36, 12 + i, value(n[v][d]));
-                Yl[v][d]             = L(36, 24 + i, value(Y[v][d]));
                 in[i]                = &X[v][d];
                 in[12 + i]           = &n[v][d];
                 in[24 + i]           = &Y[v][d];
@@ -342,16 +399,18 @@ namespace glide
                 return x->size() == 0;
               }))
             {
-              std::array<std::array<double, 3>, 4> Xd, nd, Yd;
-              for (unsigned int v = 0; v < 4; ++v)
-                for (unsigned int d = 0; d < 3; ++d)
-                  {
-                    Xd[v][d] = value(X[v][d]);
-                    nd[v][d] = value(n[v][d]);
-                    Yd[v][d] = value(Y[v][d]);
-                  }
-              PairMoments<double> plain;
-              pair_moments(Xd, nd, Yd, plain);
+              const auto &plain = remembered(
+                memo.plain, key, inputs, [&](PairMoments<double> &m) {
+                  std::array<std::array<double, 3>, 4> Xd, nd, Yd;
+                  for (unsigned int v = 0; v < 4; ++v)
+                    for (unsigned int d = 0; d < 3; ++d)
+                      {
+                        Xd[v][d] = inputs[3 * v + d];
+                        nd[v][d] = inputs[12 + 3 * v + d];
+                        Yd[v][d] = inputs[24 + 3 * v + d];
+                      }
+                  pair_moments(Xd, nd, Yd, m);
+                });
               r.failed = plain.failed;
               for (unsigned int k = 0; k < 4; ++k)
                 {
@@ -365,8 +424,19 @@ namespace glide
                 }
               return;
             }
-          PairMoments<L> local;
-          pair_moments(Xl, nl, Yl, local);
+          const auto &local =
+            remembered(memo.local, key, inputs, [&](PairMoments<L> &m) {
+              std::array<std::array<L, 3>, 4> Xl, nl, Yl;
+              for (unsigned int v = 0; v < 4; ++v)
+                for (unsigned int d = 0; d < 3; ++d)
+                  {
+                    const unsigned int i = 3 * v + d;
+                    Xl[v][d]             = L(36, i, inputs[i]);
+                    nl[v][d]             = L(36, 12 + i, inputs[12 + i]);
+                    Yl[v][d]             = L(36, 24 + i, inputs[24 + i]);
+                  }
+              pair_moments(Xl, nl, Yl, m);
+            });
           r.failed        = local.failed;
           const auto lift = [&in](const L &a) {
             T b = a.val();
@@ -388,6 +458,12 @@ namespace glide
         }
     }
   } // namespace
+
+  template <int dim>
+  struct Mortar<dim>::PairCache
+  {
+    PairMemo memo;
+  };
 
   /**
    * Mortar terms in 3D (R14.2; Popp, Gitterle, Gee and Wall 2010),
@@ -455,6 +531,9 @@ namespace glide
       facet_point(X, xi, N, x, a1, a2);
       return unit3(cross3(a1, a2));
     };
+    if (!pair_cache)
+      pair_cache = std::make_shared<PairCache>();
+    PairMemo &memo = pair_cache->memo;
     // Nodal normals of the patch's slave nodes, computed when needed.
     std::vector<V>    nodal(p.slave.size());
     std::vector<bool> have(p.slave.size(), false);
@@ -532,7 +611,8 @@ namespace glide
               }
             pairs.emplace_back(c, PairMoments<T>());
             auto &r = pairs.back().second;
-            pair_moments_in(X, n, Y, r);
+            pair_moments_in(
+              X, n, Y, r, std::uint64_t(f) * m_facets.size() + c, memo);
             t.failed = t.failed || r.failed;
             for (unsigned int k = 0; k < 4; ++k)
               {

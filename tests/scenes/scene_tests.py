@@ -1246,20 +1246,19 @@ ROBUSTNESS_EXCEPTIONS = {
     # A slave 1e6 times stiffer than its master (the role assignment the
     # usual advice warns against): the soft master wraps around the coarse
     # slave nodes (node to surface lets it), and the open/closed state of
-    # the slave nodes at the edge keeps changing. Measured at level 1:
-    # 6, 14, 2, 14 (f = 0.2) and 6, 13, 2, 15 (small sliding); the peak
-    # pressure is 1.75-1.77 times Hertz's.
+    # the slave nodes at the edge keeps changing. Measured at level 1
+    # (2026-12-03): 3, 14, 2, 14 (f = 0.2) and 3, 13, 2, 13 (small
+    # sliding); the peak pressure is 1.75-1.77 times Hertz's.
     ("nts-finite-f0.2", "ratio 1e6, stiff slave"),
     ("nts-small", "ratio 1e6, stiff slave"),
     # Surface to surface: the first step (force-driven from one touching
-    # node) takes 8-17 iterations at levels 0-1 (the later ones 2-4): its
-    # averaging regions close and open together at the contact edge, a
-    # singular Jacobian ends the full-Newton attempt and the line-search
-    # retry finishes. Measured first steps: 8 / 17 (block slave), 14 / 13
-    # (cylinder slave), 9 / 12 (soft slave), 13 / 17 (stiff slave).
+    # node) takes 17 iterations at level 1 with the block as slave (the
+    # later ones 2-3): its averaging regions close and open together at
+    # the contact edge, a singular Jacobian ends the full-Newton attempt
+    # and the line-search retry finishes. With the stiff cylinder as
+    # slave: 3, 11, 2, 12 at level 1. Measured 2026-12-03; the other two
+    # cells of surface to surface meet the targets.
     ("sts-small", "ratio 3, block slave"),
-    ("sts-small", "ratio 3, cylinder slave"),
-    ("sts-small", "ratio 1e6, soft slave"),
     ("sts-small", "ratio 1e6, stiff slave"),
 }
 

@@ -419,3 +419,77 @@ TEST(Mortar, RefusedForDegree2In3D)
         << e.what();
     }
 }
+
+// R16.1 with the pair memo of compute_3d() (Mortar::PairCache): the
+// patches of a slave facet's four nodes share the integrals of its facet
+// pairs, and an entry is used only at the coordinates it was computed
+// with. So the terms and the linearization of every node are the same bit
+// for bit whatever was evaluated before: in a fresh formulation in reverse
+// order, and after an evaluation at another displacement. Curved master
+// (distorted facets, the higher polygon rules), random state.
+TEST(Mortar, PairMemoDoesNotChangeTheTerms3D)
+{
+  const std::string             text = ball_on_block_3d(false, false, "hard");
+  glide_test::ContactFixture<3> s(text, "mortar_memo_3d.prm");
+  glide_test::ContactFixture<3> fresh(text, "mortar_memo_3d_fresh.prm");
+  VectorType                    U, v;
+  glide_test::random_contact_state(s.e, s.contact, U, v, 7, 0.01, 0.02);
+  VectorType other(U);
+  other *= 1.5;
+  const auto *m = dynamic_cast<const Mortar<3> *>(&s.contact.formulation_of(0));
+  const auto *mf =
+    dynamic_cast<const Mortar<3> *>(&fresh.contact.formulation_of(0));
+  ASSERT_NE(m, nullptr);
+  ASSERT_NE(mf, nullptr);
+  const unsigned int n = s.contact.slave_nodes(0).size();
+
+  using Linearization = typename Mortar<3>::Linearization;
+  struct Result
+  {
+    Mortar<3>::Terms<double> terms;
+    Linearization            l;
+  };
+  const auto evaluate =
+    [&](const Mortar<3> &mortar, const VectorType &W, const bool reverse) {
+      mortar.move(W);
+      std::vector<Result> r(n);
+      for (unsigned int k = 0; k < n; ++k)
+        {
+          const unsigned int i = reverse ? n - 1 - k : k;
+          r[i].terms           = mortar.terms(i);
+          const auto c         = mortar.evaluate(i, W);
+          if (c.found())
+            mortar.linearize(i, c, W, r[i].l);
+        }
+      return r;
+    };
+  const auto   first       = evaluate(*m, U, false);
+  const auto   second      = evaluate(*m, other, false);
+  const auto   again       = evaluate(*m, U, true);
+  const auto   fresh_other = evaluate(*mf, other, true);
+  const auto   fresh_U     = evaluate(*mf, U, false);
+  unsigned int found       = 0;
+  const auto   expect_same =
+    [&](const Result &r, const Result &e, const unsigned int i) {
+      EXPECT_EQ(r.terms.weight, e.terms.weight) << i;
+      EXPECT_EQ(r.terms.weighted_gap, e.terms.weighted_gap) << i;
+      EXPECT_EQ(r.terms.M, e.terms.M) << i;
+      ASSERT_EQ(r.l.dofs, e.l.dofs) << i;
+      EXPECT_EQ(r.l.gap, e.l.gap) << i;
+      for (unsigned int a = 0; a < r.l.dgap.size(); ++a)
+        EXPECT_EQ(r.l.dgap(a), e.l.dgap(a)) << i;
+      for (unsigned int a = 0; a < r.l.dforce.m(); ++a)
+        for (unsigned int b = 0; b < r.l.dforce.n(); ++b)
+          EXPECT_EQ(r.l.dforce(a, b), e.l.dforce(a, b)) << i;
+      found += e.l.dgap.size() > 0 ? 1 : 0;
+    };
+  for (unsigned int i = 0; i < n; ++i)
+    {
+      expect_same(again[i], first[i], i);
+      expect_same(fresh_U[i], first[i], i);
+      expect_same(second[i], fresh_other[i], i);
+    }
+  EXPECT_GT(found, 0u) << "some nodes have a constraint";
+  // The two states differ (else the checks above prove nothing).
+  EXPECT_NE(first[n / 2].terms.weighted_gap, second[n / 2].terms.weighted_gap);
+}

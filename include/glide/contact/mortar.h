@@ -185,6 +185,13 @@ namespace glide
     mutable dealii::RTree<Leaf> tree;
     mutable std::uint64_t       tree_version =
       std::numeric_limits<std::uint64_t>::max();
+    /// Memo of the integrals of slave-master facet pairs in 3D (defined in
+    /// source/contact/mortar_3d.cc): the patches of a slave facet's four
+    /// nodes integrate the same pairs. An entry is used only where the
+    /// pair's coordinates and normals are those it was computed with, so a
+    /// hit gives what the computation would, bit for bit.
+    struct PairCache;
+    mutable std::shared_ptr<PairCache> pair_cache;
     /// Per node: master nodes coupled in the sparsity pattern (sorted).
     std::vector<std::vector<unsigned int>> coupled;
     /// Per node: position and mortar point sum_m (M_jm / D_jj) x_m at the
