@@ -308,12 +308,6 @@ namespace glide
         }
     }
 
-    /// pair_moments() in T. For T = double directly; for a Fad T the
-    /// moments are computed with a fixed-size Fad in the 36 coordinates of
-    /// X, n and Y only, and their derivatives carried over to T by the
-    /// chain rule (the same derivatives, at a fraction of the cost of
-    /// differentiating every quadrature point with respect to all the
-    /// patch's coordinates).
     /// The moments of a pair in the fixed-size Fad of pair_moments_in().
     using LocalFad = Sacado::Fad::SFad<double, 36>;
 
@@ -360,6 +354,14 @@ namespace glide
       return e.moments;
     }
 
+    /// pair_moments() in T. For T = double directly; for a Fad T the
+    /// moments are computed with a fixed-size Fad in the 36 coordinates of
+    /// X, n and Y only, and their derivatives carried over to T by the
+    /// chain rule (the same derivatives, at a fraction of the cost of
+    /// differentiating every quadrature point with respect to all the
+    /// patch's coordinates). Both through the memo @p memo under @p key
+    /// (the slave and master facets): the patches of the slave facet's
+    /// other nodes integrate the same pair.
     template <typename T>
     void
     pair_moments_in(const std::array<std::array<T, 3>, 4> &X,

@@ -189,7 +189,8 @@ namespace glide
     /// source/contact/mortar_3d.cc): the patches of a slave facet's four
     /// nodes integrate the same pairs. An entry is used only where the
     /// pair's coordinates and normals are those it was computed with, so a
-    /// hit gives what the computation would, bit for bit.
+    /// hit gives what the computation would, bit for bit. Not for
+    /// concurrent use (Contact::assemble() evaluates nodes one at a time).
     struct PairCache;
     mutable std::shared_ptr<PairCache> pair_cache;
     /// Per node: master nodes coupled in the sparsity pattern (sorted).
