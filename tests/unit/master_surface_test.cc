@@ -104,6 +104,41 @@ namespace
   }
 
   using glide_test::master_of;
+
+  /// A vertex of a faceted 2D master (f = 0, degree 1) where facet i meets
+  /// its neighbour: the facets' unit tangents and outward normals, and the
+  /// unit bisector of the normals.
+  struct Corner
+  {
+    unsigned int         i, v;
+    dealii::Tensor<1, 2> ti, tj, ni, nj, b;
+  };
+
+  /// The corners between neighbouring facets of @p m.
+  std::vector<Corner>
+  faceted_corners(const MasterSurface<2> &m)
+  {
+    const auto &facets = m.get_facets();
+    const auto &x      = m.get_positions();
+    const auto  unit   = [](const Tensor<1, 2> &a) { return a / a.norm(); };
+    std::vector<Corner> corners;
+    for (unsigned int i = 0; i < facets.size(); ++i)
+      {
+        const int j = facets[i].neighbours[1];
+        if (j < 0)
+          continue;
+        Corner c;
+        c.i  = i;
+        c.v  = facets[i].nodes.back();
+        c.ti = unit(x[c.v] - x[facets[i].nodes[0]]);
+        c.tj = unit(x[facets[j].nodes.back()] - x[c.v]);
+        c.ni = Tensor<1, 2>({c.ti[1], -c.ti[0]});
+        c.nj = Tensor<1, 2>({c.tj[1], -c.tj[0]});
+        c.b  = unit(c.ni + c.nj);
+        corners.push_back(c);
+      }
+    return corners;
+  }
 } // namespace
 
 // R5.1: consistent Jacobian with a deformable master, faceted (f = 0) and
@@ -295,28 +330,13 @@ TEST(MasterSurface, ProjectionOntoAFlatSurface)
 // linearization gives the same gap gradient as finite differences.
 TEST(MasterSurface, FacetedCornerUsesTheFacetNormals)
 {
-  Fixture<2>  s(ball_on_block(2, 0., 1, "hard"), "corner.prm");
-  const auto  ball      = master_of<2>(s, "ball.curved", 0.);
-  const auto &facets    = ball->get_facets();
-  const auto &x         = ball->get_positions();
-  auto        normal_of = [&](const unsigned int i) {
-    const Tensor<1, 2> a = x[facets[i].nodes.back()] - x[facets[i].nodes[0]];
-    Tensor<1, 2>       n;
-    n[0] = a[1];
-    n[1] = -a[0];
-    return n / n.norm();
-  };
+  Fixture<2>   s(ball_on_block(2, 0., 1, "hard"), "corner.prm");
+  const auto   ball    = master_of<2>(s, "ball.curved", 0.);
+  const auto  &x       = ball->get_positions();
   unsigned int corners = 0;
-  for (unsigned int i = 0; i < facets.size(); ++i)
+  for (const auto &[i, v, ti, tj, ni, nj, b] : faceted_corners(*ball))
     {
-      const int j = facets[i].neighbours[1];
-      if (j < 0)
-        continue;
-      const unsigned int v  = facets[i].nodes.back();
-      const Tensor<1, 2> ni = normal_of(i), nj = normal_of(j);
       ASSERT_LT(ni * nj, 1. - 1e-6) << "a kink at every node";
-      Tensor<1, 2> b = ni + nj;
-      b /= b.norm();
       const Tensor<1, 2> t({-b[1], b[0]});
       const double       h = ball->facet_size();
       for (const double offset : {-0.002, 0., 0.003})
@@ -369,9 +389,8 @@ TEST(MasterSurface, FacetedCornerUsesTheFacetNormals)
 TEST(MasterSurface, SpringDirectionIsContinuousAtFacetedCorners)
 {
   Fixture<2>  s(ball_on_block(2, 0., 1, "hard"), "spring.prm");
-  const auto  ball   = master_of<2>(s, "ball.curved", 0.);
-  const auto &facets = ball->get_facets();
-  const auto &x      = ball->get_positions();
+  const auto  ball = master_of<2>(s, "ball.curved", 0.);
+  const auto &x    = ball->get_positions();
   const std::array<types::global_dof_index, 2> slave_dofs{{0, 1}};
   auto                                         at = [&](const Point<2> &xs) {
     const auto p = ball->project(xs);
@@ -382,18 +401,9 @@ TEST(MasterSurface, SpringDirectionIsContinuousAtFacetedCorners)
     return l;
   };
   unsigned int corners = 0;
-  for (unsigned int i = 0; i < facets.size(); ++i)
+  for (const auto &[i, v, ti, tj, ni, nj, b] : faceted_corners(*ball))
     {
-      const int j = facets[i].neighbours[1];
-      if (j < 0)
-        continue;
-      const unsigned int v = facets[i].nodes.back();
-      auto unit            = [](const Tensor<1, 2> &a) { return a / a.norm(); };
-      const Tensor<1, 2> ti = unit(x[v] - x[facets[i].nodes[0]]);
-      const Tensor<1, 2> tj = unit(x[facets[j].nodes.back()] - x[v]);
-      const Tensor<1, 2> ni({ti[1], -ti[0]}), nj({tj[1], -tj[0]});
-      const Tensor<1, 2> b = unit(ni + nj);
-      const double       h = ball->facet_size();
+      const double h = ball->facet_size();
       for (const double eps : {1e-3, 1e-5})
         {
           // Just inside facet i and just inside facet j, 0.05 h outside.

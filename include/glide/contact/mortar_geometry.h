@@ -581,10 +581,10 @@ namespace glide
     /// one): deal.II's Witherden-Vincent rule with (degree + 1) / 2 points
     /// per direction, in barycentric coordinates with weights as fractions
     /// of the area. All points lie inside the triangle and all weights are
-    /// positive. Degree 5 is the 7-point rule of Radon (Stroud's T2:5-1),
-    /// degree 11 has 28 points. The unit tests check them monomial by
-    /// monomial against `int_T x^a y^b = a! b! / (a + b + 2)!` on the
-    /// reference triangle.
+    /// positive. Degree 5 is the 7-point rule of Radon (Stroud's T2:5-1);
+    /// degrees 7, 9, 11 and 13 have 15, 19, 28 and 37 points. The unit tests
+    /// check them monomial by monomial against `int_T x^a y^b = a! b! / (a + b
+    /// + 2)!` on the reference triangle.
     inline const std::vector<TriangleRulePoint> &
     triangle_rule(const unsigned int degree = 5)
     {
@@ -618,10 +618,10 @@ namespace glide
     /// vertex_mean(), one per edge, and each gets triangle_rule(@p degree).
     /// Exact for polynomials of degree up to @p degree on convex polygons
     /// (each triangle is then non-inverted and the rule is exact on each).
-    /// Callers evaluate
-    /// several integrands (shape functions, gaps) at the same points. An
-    /// empty polygon (no overlap) has no points. Triangles of zero area (from
-    /// collinear vertices that clipping may leave) give zero weights.
+    /// Callers evaluate several integrands (shape functions, gaps) at the
+    /// same points. An empty polygon (no overlap) has no points. Triangles
+    /// of zero area (from collinear vertices that clipping may leave) give
+    /// zero weights.
     template <typename T>
     std::vector<QuadraturePoint<T>>
     quadrature(const Polygon<T> &polygon, const unsigned int degree = 5)
