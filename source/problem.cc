@@ -69,10 +69,10 @@ namespace glide
       TimerOutput::Scope t(timer, "setup");
       contact.setup(elasticity.get_dof_handler().n_dofs());
     }
-    elasticity.setup_system(contact.owned_multipliers(),
-                            [&](DynamicSparsityPattern &dsp) {
-                              contact.add_sparsity(dsp);
-                            });
+    elasticity.setup_system(
+      contact.owned_multipliers(),
+      [&](DynamicSparsityPattern &dsp) { contact.add_sparsity(dsp); },
+      contact.ghost_dofs());
     jacobian.reinit(elasticity.matrix_pattern());
     // Input checks that need the constraints: every body held, every
     // function finite (before anything is written).
@@ -193,10 +193,10 @@ namespace glide
   {
     pcout << "    contact: sparsity pattern rebuilt (sliding)" << std::endl;
     linear_solver.clear(); // it refers to the old matrix
-    elasticity.setup_system(contact.owned_multipliers(),
-                            [&](DynamicSparsityPattern &dsp) {
-                              contact.add_sparsity(dsp);
-                            });
+    elasticity.setup_system(
+      contact.owned_multipliers(),
+      [&](DynamicSparsityPattern &dsp) { contact.add_sparsity(dsp); },
+      contact.ghost_dofs());
     jacobian.reinit(elasticity.matrix_pattern());
   }
 

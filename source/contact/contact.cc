@@ -215,11 +215,6 @@ namespace glide
         std::unique_ptr<MasterSurface<dim>> surface;
         if (p.master_type == MasterType::surface)
           {
-            require(Utilities::MPI::n_mpi_processes(comm) == 1,
-                    "Contact pair '" + p.name +
-                      "': deformable master surfaces ('" + p.master +
-                      "') run on one process for now; run glide without "
-                      "mpirun (or with -np 1), or use a rigid master.");
             std::set<types::boundary_id> master_ids;
             for (const auto &name : Utilities::split_string_list(p.master, ','))
               for (const auto id :
@@ -319,6 +314,23 @@ namespace glide
         pairs.push_back(std::move(pair));
         // The formulation keeps a reference to the nodes: set up in place.
         pairs.back().formulation->setup(pairs.back().nodes);
+        // Under MPI: how the pair is split between the processes.
+        const unsigned int n_processes = Utilities::MPI::n_mpi_processes(comm);
+        if (n_processes > 1)
+          {
+            const auto        &nodes = pairs.back().nodes;
+            std::ostringstream text;
+            text << "contact pair '" << p.name << "': " << n_global
+                 << " slave nodes on "
+                 << Utilities::MPI::sum(nodes.empty() ? 0u : 1u, comm) << " of "
+                 << n_processes << " processes";
+            if (const auto *s = pairs.back().formulation->master_surface())
+              text << "; the master surface's " << s->get_facets().size()
+                   << " facets on " << s->n_owners()
+                   << " process(es), held by every process";
+            if (Utilities::MPI::this_mpi_process(comm) == 0)
+              messages.push_back(text.str());
+          }
       }
 
     // Number the multiplier blocks: each node gets block_size() of them,
@@ -335,6 +347,22 @@ namespace glide
     multipliers.add_range(first_multiplier + offset,
                           first_multiplier + offset + n_local);
     types::global_dof_index next = first_multiplier + offset;
+    // Under MPI: the DoFs the formulations read beyond this process's
+    // own (master nodes, mortar slave facets), imported by view().
+    {
+      std::vector<types::global_dof_index> read;
+      for (const auto &pair : pairs)
+        pair.formulation->read_dofs(read);
+      std::sort(read.begin(), read.end());
+      read.erase(std::unique(read.begin(), read.end()), read.end());
+      read_ghosts = IndexSet(first_multiplier + total_multipliers);
+      if (Utilities::MPI::n_mpi_processes(comm) > 1)
+        read_ghosts.add_indices(read.begin(), read.end());
+      read_ghosts.compress();
+      import_ghosts =
+        Utilities::MPI::max(read_ghosts.n_elements() > 0 ? 1 : 0, comm) > 0;
+      ghosted.clear();
+    }
     for (auto &pair : pairs)
       if (pair.enforcement->block_size() > 0)
         for (auto &node : pair.nodes)
@@ -342,6 +370,21 @@ namespace glide
             node.multiplier = next;
             next += pair.enforcement->block_size();
           }
+  }
+
+  template <int dim>
+  const VectorType &
+  Contact<dim>::view(const VectorType &U) const
+  {
+    if (!import_ghosts || U.size() == 0)
+      return U;
+    const bool other =
+      ghosted.size() != U.size() ||
+      ghosted.locally_owned_elements() != U.locally_owned_elements();
+    if (Utilities::MPI::max(other ? 1 : 0, comm) > 0)
+      ghosted.reinit(U.locally_owned_elements(), read_ghosts, comm);
+    ghosted = U;
+    return ghosted;
   }
 
   template <int dim>
@@ -372,9 +415,10 @@ namespace glide
 
   template <int dim>
   bool
-  Contact<dim>::needs_new_pattern(const VectorType &U)
+  Contact<dim>::needs_new_pattern(const VectorType &U_in)
   {
-    bool outside = false;
+    const VectorType &U       = view(U_in);
+    bool              outside = false;
     for (const auto &pair : pairs)
       {
         pair.formulation->move(U);
@@ -419,8 +463,9 @@ namespace glide
 
   template <int dim>
   std::vector<typename ActiveSetMonitor<dim>::Status>
-  Contact<dim>::status(const VectorType &U) const
+  Contact<dim>::status(const VectorType &U_in) const
   {
+    const VectorType                                   &U = view(U_in);
     std::vector<typename ActiveSetMonitor<dim>::Status> result;
     for (const auto &pair : pairs)
       {
@@ -469,9 +514,10 @@ namespace glide
 
   template <int dim>
   double
-  Contact<dim>::held_gap_error(const VectorType &U) const
+  Contact<dim>::held_gap_error(const VectorType &U_in) const
   {
-    double worst = 0.;
+    const VectorType &U     = view(U_in);
+    double            worst = 0.;
     for (const auto &pair : pairs)
       worst =
         std::max(worst, pair.formulation->held_gap_error(constraints(pair, U)));
@@ -551,12 +597,13 @@ namespace glide
 
   template <int dim>
   void
-  Contact<dim>::assemble(const VectorType &U,
+  Contact<dim>::assemble(const VectorType &U_in,
                          VectorType       *F,
                          MatrixType       *J) const
   {
-    const auto &constraints = elasticity.update_constraints();
-    std::string failure; // a projection that failed on this process
+    const VectorType &U           = view(U_in);
+    const auto       &constraints = elasticity.update_constraints();
+    std::string       failure; // a projection that failed on this process
     typename Formulation<dim>::Linearization l;
     l.derivatives = J != nullptr;
     Vector<double>                       rhs;
@@ -640,8 +687,9 @@ namespace glide
 
   template <int dim>
   std::vector<std::pair<std::string, std::string>>
-  Contact<dim>::statistics(const VectorType &U) const
+  Contact<dim>::statistics(const VectorType &U_in) const
   {
+    const VectorType                                &U = view(U_in);
     std::vector<std::pair<std::string, std::string>> row;
     const char                                      *axis[] = {"x", "y", "z"};
     for (const auto &pair : pairs)
@@ -724,10 +772,11 @@ namespace glide
 
   template <int dim>
   void
-  Contact<dim>::commit_step(const VectorType &U,
+  Contact<dim>::commit_step(const VectorType &U_in,
                             const double      t_old,
                             const double      t_new)
   {
+    const VectorType &U = view(U_in);
     for (auto &pair : pairs)
       {
         const auto        s = constraints(pair, U);
@@ -741,9 +790,10 @@ namespace glide
 
   template <int dim>
   unsigned int
-  Contact<dim>::close_touching_nodes(VectorType &U) const
+  Contact<dim>::close_touching_nodes(VectorType &U_out) const
   {
-    unsigned int n_closed = 0;
+    const VectorType &U        = view(U_out);
+    unsigned int      n_closed = 0;
     for (const auto &pair : pairs)
       {
         if (pair.enforcement->block_size() == 0)
@@ -762,20 +812,21 @@ namespace glide
             const auto &node = pair.nodes[i];
             if (s[i].found() && s[i].gap - clearance <= 0.01 * node.size)
               {
-                U[node.multiplier] =
+                U_out[node.multiplier] =
                   node.c * std::max(0., s[i].gap - clearance);
                 ++n_closed;
               }
           }
       }
-    U.compress(VectorOperation::insert);
+    U_out.compress(VectorOperation::insert);
     return Utilities::MPI::sum(n_closed, comm);
   }
 
   template <int dim>
   std::vector<ContactPairFields<dim>>
-  Contact<dim>::nodal_fields(const VectorType &U, const double t)
+  Contact<dim>::nodal_fields(const VectorType &U_in, const double t)
   {
+    const VectorType                   &U = view(U_in);
     std::vector<ContactPairFields<dim>> result;
     for (auto &pair : pairs)
       {

@@ -57,6 +57,15 @@ namespace glide
   {}
 
   template <int dim>
+  void
+  Formulation<dim>::read_dofs(std::vector<types::global_dof_index> &dofs) const
+  {
+    if (surface)
+      for (const auto &node : surface->get_nodes())
+        dofs.insert(dofs.end(), node.dofs.begin(), node.dofs.end());
+  }
+
+  template <int dim>
   bool
   Formulation<dim>::outside_pattern(const unsigned int,
                                     const Constraint<dim> &) const

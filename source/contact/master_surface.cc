@@ -190,18 +190,24 @@ namespace glide
 
     std::array<std::set<types::global_dof_index>, dim> symmetric;
     std::map<types::global_dof_index, unsigned int>    node_index;
+    std::vector<double>                                diameters;
     std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
+    // Master facets of this process's cells; symmetry faces of its ghost
+    // cells too, since a node of an owned facet may lie on a symmetry face
+    // of a neighbouring process's cell (every cell at the node is owned or
+    // ghost).
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
-        if (!cell->is_locally_owned())
+        if (cell->is_artificial())
           continue;
         for (const auto f : cell->face_indices())
           {
             if (!cell->face(f)->at_boundary())
               continue;
-            const auto id        = cell->face(f)->boundary_id();
-            const bool is_master = ids.count(id) > 0;
-            int        symmetry  = -1;
+            const auto id = cell->face(f)->boundary_id();
+            const bool is_master =
+              ids.count(id) > 0 && cell->is_locally_owned();
+            int symmetry = -1;
             for (unsigned int c = 0; c < dim; ++c)
               for (const auto s : elasticity.symmetry_boundary_ids(c))
                 if (s == id)
@@ -257,7 +263,7 @@ namespace glide
                 }
             facet.neighbours.fill(-1);
             facets.push_back(facet);
-            max_size = std::max(max_size, face->diameter());
+            diameters.push_back(face->diameter());
 
             // Outward orientation: the facet's normal must point away from
             // its cell.
@@ -287,18 +293,22 @@ namespace glide
               }
           }
       }
+    on_symmetry_plane.resize(nodes.size());
+    for (unsigned int k = 0; k < nodes.size(); ++k)
+      for (unsigned int c = 0; c < dim; ++c)
+        on_symmetry_plane[k][c] = symmetric[c].count(nodes[k].dofs[c]) > 0;
+    if (Utilities::MPI::n_mpi_processes(dof_handler.get_communicator()) > 1)
+      gather(dof_handler.get_communicator(), diameters);
+    for (const double d : diameters)
+      max_size = std::max(max_size, d);
     x.resize(nodes.size());
     for (unsigned int k = 0; k < nodes.size(); ++k)
       x[k] = nodes[k].X;
     pieces.clear();
     if (facets.empty())
       return;
-    on_symmetry_plane.resize(nodes.size());
-    for (unsigned int k = 0; k < nodes.size(); ++k)
-      for (unsigned int c = 0; c < dim; ++c)
-        on_symmetry_plane[k][c] = symmetric[c].count(nodes[k].dofs[c]) > 0;
     if (dim == 2)
-      build_pieces_2d(symmetric, axisymmetric, path);
+      build_pieces_2d(axisymmetric, path);
     else
       build_neighbours_3d();
     set_displacement(VectorType());
@@ -306,10 +316,81 @@ namespace glide
 
   template <int dim>
   void
-  MasterSurface<dim>::build_pieces_2d(
-    const std::array<std::set<types::global_dof_index>, dim> &symmetric,
-    const bool                                                axisymmetric,
-    const std::string                                        &path)
+  MasterSurface<dim>::gather(const MPI_Comm       comm,
+                             std::vector<double> &diameters)
+  {
+    // Per facet, as numbers: its diameter, then per node its reference
+    // position; and per node its DoFs and symmetry flags. Every process
+    // appends the facets of all processes in the order of their ranks,
+    // which is the order of the cells of one process (p4est partitions
+    // the cells in one space-filling-curve order), so that every process
+    // holds the same surface, numbered as on one process.
+    std::vector<double>                  reals;
+    std::vector<types::global_dof_index> integers;
+    for (unsigned int i = 0; i < facets.size(); ++i)
+      {
+        reals.push_back(diameters[i]);
+        for (const auto k : facets[i].nodes)
+          {
+            for (unsigned int d = 0; d < dim; ++d)
+              reals.push_back(nodes[k].X[d]);
+            for (unsigned int d = 0; d < dim; ++d)
+              integers.push_back(nodes[k].dofs[d]);
+            for (unsigned int d = 0; d < dim; ++d)
+              integers.push_back(on_symmetry_plane[k][d] ? 1 : 0);
+          }
+      }
+    const unsigned int n_nodes =
+      Utilities::fixed_power<dim - 1>(polynomial_degree + 1);
+    owners               = Utilities::MPI::sum(facets.empty() ? 0u : 1u, comm);
+    const auto all_reals = Utilities::MPI::all_gather(comm, reals);
+    const auto all_integers = Utilities::MPI::all_gather(comm, integers);
+    nodes.clear();
+    facets.clear();
+    on_symmetry_plane.clear();
+    diameters.clear();
+    std::map<types::global_dof_index, unsigned int> node_index;
+    for (unsigned int r = 0; r < all_reals.size(); ++r)
+      {
+        const auto &R = all_reals[r];
+        const auto &I = all_integers[r];
+        for (std::size_t a = 0, b = 0; a < R.size();)
+          {
+            diameters.push_back(R[a++]);
+            Facet facet;
+            facet.neighbours.fill(-1);
+            for (unsigned int j = 0; j < n_nodes; ++j)
+              {
+                Node node;
+                for (unsigned int d = 0; d < dim; ++d)
+                  node.X[d] = R[a++];
+                for (unsigned int d = 0; d < dim; ++d)
+                  node.dofs[d] = I[b++];
+                std::array<bool, dim> flags;
+                for (unsigned int d = 0; d < dim; ++d)
+                  flags[d] = I[b++] != 0;
+                const auto [it, inserted] =
+                  node_index.emplace(node.dofs[0], nodes.size());
+                if (inserted)
+                  {
+                    nodes.push_back(node);
+                    on_symmetry_plane.push_back(flags);
+                  }
+                else
+                  for (unsigned int d = 0; d < dim; ++d)
+                    on_symmetry_plane[it->second][d] =
+                      on_symmetry_plane[it->second][d] || flags[d];
+                facet.nodes.push_back(it->second);
+              }
+            facets.push_back(facet);
+          }
+      }
+  }
+
+  template <int dim>
+  void
+  MasterSurface<dim>::build_pieces_2d(const bool         axisymmetric,
+                                      const std::string &path)
   {
     const unsigned int p = polynomial_degree;
     const double       f = fraction;
@@ -340,7 +421,7 @@ namespace glide
       if (axisymmetric && std::abs(nodes[node].X[0]) < tolerance)
         return 0;
       for (unsigned int c = 0; c < dim; ++c)
-        if (symmetric[c].count(nodes[node].dofs[c]))
+        if (on_symmetry_plane[node][c])
           return int(c);
       return -1;
     };

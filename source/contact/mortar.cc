@@ -204,6 +204,15 @@ namespace glide
 
   template <int dim>
   void
+  Mortar<dim>::read_dofs(std::vector<types::global_dof_index> &dofs) const
+  {
+    Formulation<dim>::read_dofs(dofs);
+    for (const auto &node : slave->get_nodes())
+      dofs.insert(dofs.end(), node.dofs.begin(), node.dofs.end());
+  }
+
+  template <int dim>
+  void
   Mortar<dim>::move(const VectorType &U) const
   {
     const auto start = std::chrono::steady_clock::now();

@@ -436,7 +436,8 @@ namespace glide
   void
   Elasticity<dim>::setup_system(
     const IndexSet                                      &extra,
-    const std::function<void(DynamicSparsityPattern &)> &add_couplings)
+    const std::function<void(DynamicSparsityPattern &)> &add_couplings,
+    const IndexSet                                      &ghosts)
   {
     TimerOutput::Scope t(timer, "setup");
     // The unknowns: displacement DoFs, then any extra unknowns (contact
@@ -448,6 +449,10 @@ namespace glide
     relevant_total = IndexSet(owned_total.size());
     relevant_total.add_indices(relevant);
     relevant_total.add_indices(extra);
+    if (ghosts.size() > 0)
+      relevant_total.add_indices(ghosts);
+    consistent_constraints =
+      Utilities::MPI::max(ghosts.n_elements() > 0 ? 1 : 0, comm) > 0;
 
     hanging_node_constraints.reinit(relevant_total);
     DoFTools::make_hanging_node_constraints(dof_handler,
@@ -623,6 +628,11 @@ namespace glide
         input_failure = e.what();
       }
     throw_input_error_on_any_process(input_failure, comm);
+    // DoFs of other processes that contact reaches (a master surface
+    // there): their owners know their constraints (Dirichlet, symmetry,
+    // hanging), this process does not.
+    if (consistent_constraints)
+      c.make_consistent_in_parallel(owned_total, relevant_total, comm);
     c.close();
     return c;
   }

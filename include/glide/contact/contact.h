@@ -74,6 +74,16 @@ namespace glide
       return total_multipliers;
     }
 
+    /// The DoFs this process reads besides its own (under MPI: the nodes
+    /// of master surfaces and mortar slave facets of other processes):
+    /// their rows are in the sparsity pattern and their constraints must
+    /// be known here (Elasticity::setup_system()).
+    const dealii::IndexSet &
+    ghost_dofs() const
+    {
+      return read_ghosts;
+    }
+
     /// Couplings of contact terms, for the sparsity pattern: each slave
     /// node with the master nodes it can reach by sliding about one master
     /// facet from where it is now.
@@ -266,6 +276,11 @@ namespace glide
     std::vector<Constraint<dim>>
     constraints(const Pair &pair, const VectorType &U) const;
 
+    /// @p U with the entries of ghost_dofs() (U itself on one process):
+    /// what every function that takes an iterate reads.
+    const VectorType &
+    view(const VectorType &U) const;
+
     /// Add a log message listing @p nodes (gathered from all processes).
     void
     report(const std::vector<std::string> &nodes,
@@ -313,6 +328,9 @@ namespace glide
     double                          time = 0.; ///< load factor
     std::vector<std::string>        messages;
     dealii::IndexSet                multipliers;
+    dealii::IndexSet                read_ghosts;
+    bool                            import_ghosts = false;
+    mutable VectorType              ghosted;
     dealii::types::global_dof_index total_multipliers  = 0;
     double                          max_youngs_modulus = 0.;
     /// Hard contact holds closed nodes at this gap, 1e-10 times the scene

@@ -159,6 +159,12 @@ namespace glide
               const VectorType                             &U,
               std::vector<dealii::types::global_dof_index> &dofs);
 
+    /// The displacement DoFs the formulation reads from an iterate besides
+    /// the DoFs and multipliers of this process's slave nodes (those of
+    /// the master surface's nodes): under MPI they are imported as ghosts.
+    virtual void
+    read_dofs(std::vector<dealii::types::global_dof_index> &dofs) const;
+
     /// True if constraint @p s of node @p i reaches DoFs outside those of
     /// the last couplings().
     virtual bool

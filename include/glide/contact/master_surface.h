@@ -249,6 +249,13 @@ namespace glide
     {
       return pieces;
     }
+    /// The number of processes whose cells hold facets of the surface
+    /// (every process holds all of them, gather()).
+    unsigned int
+    n_owners() const
+    {
+      return owners;
+    }
     /// Largest facet diameter (reference configuration).
     double
     facet_size() const
@@ -272,11 +279,12 @@ namespace glide
     Projection
     project_within(const dealii::Point<dim> &x, const double radius) const;
 
+    /// Under MPI: replace this process's facets (of its own cells) by those
+    /// of every process, with their @p diameters.
     void
-    build_pieces_2d(const std::array<std::set<dealii::types::global_dof_index>,
-                                     dim> &symmetric_dofs,
-                    const bool             axisymmetric,
-                    const std::string     &path);
+    gather(const MPI_Comm comm, std::vector<double> &diameters);
+    void
+    build_pieces_2d(const bool axisymmetric, const std::string &path);
     void
     build_neighbours_3d();
 
@@ -348,6 +356,7 @@ namespace glide
     double                              fraction;
     double                              max_size          = 0.;
     unsigned int                        polynomial_degree = 1;
+    unsigned int                        owners            = 1;
     using Leaf = std::pair<dealii::BoundingBox<dim>, unsigned int>;
     dealii::RTree<Leaf> tree;
   };

@@ -78,6 +78,11 @@ namespace glide
 
     void
     move(const VectorType &U) const override;
+    /// The master's nodes and those of the slave facets (a node's weighted
+    /// gap integrates over the facets around it, across processes).
+    void
+    read_dofs(
+      std::vector<dealii::types::global_dof_index> &dofs) const override;
 
     Constraint<dim>
     evaluate(const unsigned int i, const VectorType &U) const override;

@@ -67,11 +67,15 @@ namespace glide
     /// Constraints and the sparsity pattern of the whole system: the
     /// displacement DoFs plus the @p extra unknowns (contact multipliers,
     /// numbered after the displacements); @p add_couplings adds their
-    /// couplings to the pattern.
+    /// couplings to the pattern. @p ghosts: DoFs of other processes that
+    /// the couplings reach (contact with a master surface on another
+    /// process): their rows are assembled here and sent to their owners,
+    /// and their constraints are brought from the owners.
     void
     setup_system(const dealii::IndexSet &extra = dealii::IndexSet(),
                  const std::function<void(dealii::DynamicSparsityPattern &)>
-                   &add_couplings = {});
+                                        &add_couplings = {},
+                 const dealii::IndexSet &ghosts        = dealii::IndexSet());
 
     /// The displacement part of @p U with ghost entries, for evaluation
     /// on cells.
@@ -338,7 +342,10 @@ namespace glide
     std::unique_ptr<dealii::Mapping<dim>>             mapping;
     dealii::DoFHandler<dim>                           dof_handler;
     dealii::IndexSet                                  owned, relevant;
-    dealii::IndexSet                  owned_total, relevant_total;
+    dealii::IndexSet owned_total, relevant_total;
+    /// Are there DoFs of other processes in relevant_total (besides the
+    /// usual ghosts) whose constraints the owners must send?
+    bool                              consistent_constraints = false;
     dealii::AffineConstraints<double> homogeneous_constraints;
     dealii::AffineConstraints<double> hanging_node_constraints;
     MatrixType                        pattern_matrix;
