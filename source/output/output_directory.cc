@@ -195,6 +195,37 @@ namespace glide
                     "': " + e.what();
         }
     throw_output_error_on_any_process(failure, comm);
+    // Every process writes its part of the results in parallel (MPI-IO,
+    // collective): each must see the directory the first process made and
+    // be able to write there (another file system, another working
+    // directory, a full disk on its node), or the others would wait for
+    // it in the first collective write.
+    if (dealii::Utilities::MPI::n_mpi_processes(comm) > 1)
+      {
+        const fs::path probe =
+          fs::path(staging_directory) /
+          (".probe-" +
+           std::to_string(dealii::Utilities::MPI::this_mpi_process(comm)));
+        {
+          std::ofstream out(probe);
+          out << "glide\n";
+          out.close();
+          if (out.fail())
+            failure =
+              "Process " +
+              std::to_string(dealii::Utilities::MPI::this_mpi_process(comm)) +
+              " cannot write into the output directory " +
+              in_quotes(fs::path(directory)) +
+              " that the first process prepared: " +
+              advice(errno ? errno : EIO) +
+              ". Every process must see the same 'Output/Directory' "
+              "(give an absolute path on a file system shared by "
+              "all nodes).";
+        }
+        std::error_code ec;
+        fs::remove(probe, ec);
+        throw_output_error_on_any_process(failure, comm);
+      }
   }
 
 

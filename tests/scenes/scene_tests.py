@@ -619,6 +619,36 @@ def case_contact_mpi_matches_serial():
           "surface to surface under mpirun: a clear error")
 
 
+def case_output_fails_on_one_process():
+    """Issue 15: a failure on one process only ends every process with the
+    same message and exit status, never a hang. Two processes in different
+    working directories (mpirun's MPMD form) with the relative
+    'Output/Directory = out': the first prepares it, the second finds a
+    file 'out' there. Before, the first process waited forever in the
+    collective VTU write (the test runs under a timeout)."""
+    mpirun = ARGS.mpirun.split()[0]
+    base = tempfile.mkdtemp(prefix="glide-mpmd-")
+    good, bad = os.path.join(base, "a"), os.path.join(base, "b")
+    os.makedirs(good)
+    os.makedirs(bad)
+    open(os.path.join(bad, "out"), "w").close()
+    glide = [ARGS.glide, os.path.join(ROOT, "parameters", "rigid-punch.prm"), "--set", "Output/Directory=out"]
+    cmd = [mpirun, "--oversubscribe", "-np", "1", "--wdir", good] + glide + [":", "-np", "1", "--wdir", bad] + glide
+    try:
+        p = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
+    except subprocess.TimeoutExpired:
+        check(False, "the run ends within 120 s (it hung)")
+        return
+    log = p.stdout + p.stderr
+    check(p.returncode == 4, f"exit status 4 (an output error), got {p.returncode}")
+    check("Process 1 cannot write into the output directory 'out/rigid-punch'" in log and
+          "Every process must see the same 'Output/Directory'" in log, "the message names the process and the cure")
+    check(log.count("glide: input/output error") == 1, "one message, printed once")
+    check("Step 1" not in log, "nothing is computed")
+    written = os.listdir(os.path.join(good, "out", "rigid-punch"))
+    check(all(f.startswith(".glide") for f in written), f"no results written ({written})")
+
+
 def compare_with_serial(what, serial, parallel, serial_out, parallel_out, pair, rel=1e-8):
     """Issue 15: a run on several processes gives the serial run's answer:
     per step the same Newton iterations, cut-backs and active set size;
