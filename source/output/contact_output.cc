@@ -137,9 +137,10 @@ namespace glide
             DataComponentInterpretation::component_is_part_of_vector);
         const std::string file = "contact-" + pair.pair + "-" + number + ".vtu";
         {
-          std::ofstream out(directory + "/" + file + ".tmp");
-          DataOutBase::write_vtu(
-            patches, names, vectors, DataOutBase::VtkFlags(time), out);
+          std::ofstream         out(directory + "/" + file + ".tmp");
+          DataOutBase::VtkFlags flags(time);
+          flags.compression_level = DataOutBase::VtkFlags::best_speed;
+          DataOutBase::write_vtu(patches, names, vectors, flags, out);
           if (!out)
             throw std::runtime_error("cannot write '" + directory + "/" + file +
                                      ".tmp'");

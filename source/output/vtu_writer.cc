@@ -136,6 +136,12 @@ namespace glide
 
     DataOut<dim> data_out;
     data_out.attach_dof_handler(dof_handler);
+    // zlib's fastest level: deal.II's default, its best compression, took
+    // 45 % of a 2D Hertz run (parameters/hertz-2d.prm, 33 612 DoFs, 4
+    // steps: 5.6 of 12.4 s; 0.56 s with this) for files 3 % smaller.
+    DataOutBase::VtkFlags flags;
+    flags.compression_level = DataOutBase::VtkFlags::best_speed;
+    data_out.set_flags(flags);
     const auto add_vector_field = [&](const VectorType  &v,
                                       const std::string &field) {
       data_out.add_data_vector(
