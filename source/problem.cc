@@ -28,13 +28,15 @@ namespace glide
 
   namespace
   {
-    /// Peak resident memory of this process in MiB, summed over processes.
+    /// Peak resident memory of this process in MiB, summed over processes
+    /// (@p largest: the largest of one process).
     double
-    peak_memory_mib(MPI_Comm comm)
+    peak_memory_mib(MPI_Comm comm, const bool largest = false)
     {
       rusage usage;
       getrusage(RUSAGE_SELF, &usage);
-      return Utilities::MPI::sum(usage.ru_maxrss / 1024., comm);
+      return largest ? Utilities::MPI::max(usage.ru_maxrss / 1024., comm) :
+                       Utilities::MPI::sum(usage.ru_maxrss / 1024., comm);
     }
 
     std::string
@@ -598,7 +600,8 @@ namespace glide
                        const double       wall_time)
   {
     timer.print_summary();
-    const double memory = peak_memory_mib(comm);
+    const double memory      = peak_memory_mib(comm);
+    const double per_process = peak_memory_mib(comm, true);
     pcout << "Finished " << steps << " load step(s) with " << cut_backs
           << " cut-back(s) in " << std::fixed << std::setprecision(2)
           << wall_time << " s; peak memory " << memory << " MiB" << std::endl;
@@ -613,6 +616,7 @@ namespace glide
                 << "linear_solver," << linear_solver.description() << "\n"
                 << "total_wall_time," << wall_time << "\n"
                 << "peak_memory_mib," << memory << "\n"
+                << "peak_memory_per_process_mib," << per_process << "\n"
                 << "contact_search_time," << contact.search_time() << "\n";
             for (const auto &[section, time] :
                  timer.get_summary_data(TimerOutput::total_wall_time))

@@ -12,8 +12,12 @@ evaluations) and the linear solver share of the run, peak memory, and the
 peak nodal pressure against Hertz's p0. Every number comes from the run's own
 statistics.csv, timings.csv and contact CSV.
 
+With --processes 1,2 each run is repeated under `mpirun -np P` (issue 15,
+doc/performance.md "Contact in parallel"): the table then gives the peak
+memory of the largest process and the speed-up against one process.
+
 Usage: python3 study/contact_3d.py --glide build/glide [--sizes 21,32]
-       [--runs mortar-amg,nts-direct] [--markdown FILE]
+       [--runs mortar-amg,nts-direct] [--processes 1] [--markdown FILE]
 """
 import argparse
 import csv
@@ -46,10 +50,11 @@ def sphere_refinement(n):
             "Body sphere/Refinement/Minimum refinement radius=0.25"]
 
 
-def run(glide, n, key, out):
+def run(glide, n, key, out, processes=1):
     formulation, solver, sets = RUNS[key]
-    name = f"contact3d-{n}-{key}"
-    cmd = [glide, SCENE, "--set", f"Output/Directory={out}", "--set", f"Scene name={name}",
+    name = f"contact3d-{n}-{key}-np{processes}"
+    mpi = ["mpirun", "-np", str(processes)] if processes > 1 else []
+    cmd = mpi + [glide, SCENE, "--set", f"Output/Directory={out}", "--set", f"Scene name={name}",
            "--set", "Output/Write VTU=false", "--set", "Load stepping/Number of steps=2",
            "--set", "Body block/Block/Lower corner=0, -1, 0", "--set", "Body block/Block/Upper corner=1, 0, 1",
            "--set", f"Body block/Block/Subdivisions={n}, {n}, {n}",
@@ -83,7 +88,8 @@ def run(glide, n, key, out):
             "gmres": sum(int(float(r["linear_iterations"])) for r in rows),
             "total": total, "per_iteration": total / max(newton, 1),
             "contact_share": contact / total, "solver_share": solver_time / total,
-            "memory": g("peak_memory_mib"), "p0_error": peak / p0 - 1}
+            "memory": g("peak_memory_mib"), "per_process": g("peak_memory_per_process_mib"),
+            "p0_error": peak / p0 - 1}
 
 
 def main():
@@ -91,8 +97,12 @@ def main():
     ap.add_argument("--glide", required=True)
     ap.add_argument("--sizes", default="21,32")
     ap.add_argument("--runs", default="mortar-amg,nts-direct")
+    ap.add_argument("--processes", default="1", help="comma-separated numbers of MPI processes")
     ap.add_argument("--markdown", help="append the table to this file")
     a = ap.parse_args()
+    processes = [int(x) for x in a.processes.split(",")]
+    if processes != [1]:
+        return parallel_table(a, processes)
     out = tempfile.mkdtemp(prefix="glide-contact3d-")
     header = ("| N | formulation | linear solver | DoFs | Newton its (per step) | cut-backs | GMRES its | "
               "total [s] | per Newton it. [s] | contact share | linear solver share | peak memory [MiB] | "
@@ -114,6 +124,41 @@ def main():
             print(line, flush=True)
     note = (f"\nMeasured with `python3 study/contact_3d.py --sizes {a.sizes} --runs {a.runs}` on "
             f"{platform.machine()}, {os.cpu_count()} cores, one process.\n")
+    print(note)
+    if a.markdown:
+        with open(a.markdown, "a") as f:
+            f.write("\n".join(lines) + "\n" + note)
+
+
+def parallel_table(a, processes):
+    """Each run on 1, 2, ... processes: time per Newton iteration, contact
+    share, peak memory of the largest process, speed-up and parallel
+    efficiency against the first number of processes."""
+    out = tempfile.mkdtemp(prefix="glide-contact3d-mpi-")
+    lines = ["| N | formulation | linear solver | DoFs | processes | Newton its | per Newton it. [s] | "
+             "contact share | linear solver share | peak memory, largest process [MiB] | "
+             "speed-up | efficiency | memory per process / 1 process |",
+             "|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    print(lines[0], flush=True)
+    for n in [int(x) for x in a.sizes.split(",")]:
+        for key in a.runs.split(","):
+            first = None
+            for np_ in processes:
+                r = run(a.glide, n, key, out, np_)
+                if r is None:
+                    line = f"| {n} | {RUNS[key][0]} | {RUNS[key][1]} | | {np_} | failed | | | | | | | |"
+                else:
+                    first = first or (np_, r)
+                    speed = first[1]["per_iteration"] / r["per_iteration"]
+                    line = (f"| {n} | {r['formulation']} | {r['solver']} | {r['dofs']} | {np_} | {r['newton']} | "
+                            f"{r['per_iteration']:.2f} | {100 * r['contact_share']:.0f} % | "
+                            f"{100 * r['solver_share']:.0f} % | {r['per_process']:.0f} | {speed:.2f} | "
+                            f"{100 * speed * first[0] / np_:.0f} % | "
+                            f"{r['per_process'] / first[1]['per_process']:.2f} |")
+                lines.append(line)
+                print(line, flush=True)
+    note = (f"\nMeasured with `python3 study/contact_3d.py --sizes {a.sizes} --runs {a.runs} "
+            f"--processes {a.processes}` on {platform.machine()}, {os.cpu_count()} cores.\n")
     print(note)
     if a.markdown:
         with open(a.markdown, "a") as f:

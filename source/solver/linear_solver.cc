@@ -2,6 +2,9 @@
 
 #include <deal.II/lac/solver_gmres.h>
 
+#include <Amesos.h>
+#include <Amesos_BaseSolver.h>
+#include <Epetra_LinearProblem.h>
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
 
@@ -60,6 +63,20 @@ namespace glide
     };
   } // namespace
 
+  namespace
+  {
+    /// Amesos reports failures by status (a singular matrix: a non-zero
+    /// status of the numeric factorization); KINSOL needs an exception.
+    void
+    check_amesos(const int status, const char *phase)
+    {
+      if (status != 0)
+        throw std::runtime_error(std::string("the direct solver's ") + phase +
+                                 " phase failed (status " +
+                                 std::to_string(status) + ")");
+    }
+  } // namespace
+
   void
   LinearSolver::initialize(
     const TrilinosWrappers::SparseMatrix             &A,
@@ -68,13 +85,29 @@ namespace glide
     matrix = &A;
     if (kind == "direct")
       {
-        direct = std::make_unique<TrilinosWrappers::SolverDirect>(
-          direct_control,
-          TrilinosWrappers::SolverDirect::AdditionalData(
-            false,
-            parameters.direct_solver == "MUMPS" ? "Amesos_Mumps" :
-                                                  "Amesos_Klu"));
-        direct->initialize(A);
+        const Epetra_CrsMatrix &M = A.trilinos_matrix();
+        // A new matrix object or pattern (a caller that re-initializes the
+        // matrix calls clear() first; the checks are a second guard):
+        // ordering and symbolic analysis anew.
+        if (!direct || factored != &M ||
+            factored_entries != static_cast<long long>(M.NumGlobalNonzeros64()))
+          {
+            direct.reset();
+            direct_problem = std::make_unique<Epetra_LinearProblem>();
+            direct_problem->SetOperator(const_cast<Epetra_CrsMatrix *>(&M));
+            Amesos            factory;
+            const std::string name = parameters.direct_solver == "MUMPS" ?
+                                       "Amesos_Mumps" :
+                                       "Amesos_Klu";
+            direct.reset(factory.Create(name.c_str(), *direct_problem));
+            if (!direct)
+              throw std::runtime_error("the direct solver " + name +
+                                       " is not available in Trilinos");
+            check_amesos(direct->SymbolicFactorization(), "symbolic");
+            factored         = &M;
+            factored_entries = M.NumGlobalNonzeros64();
+          }
+        check_amesos(direct->NumericFactorization(), "numeric");
         return;
       }
 
@@ -132,7 +165,10 @@ namespace glide
   {
     if (kind == "direct")
       {
-        direct->solve(x, b);
+        direct_problem->SetLHS(&x.trilinos_vector());
+        direct_problem->SetRHS(const_cast<Epetra_MultiVector *>(
+          static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));
+        check_amesos(direct->Solve(), "solve");
         return 1;
       }
     SolverControl control(parameters.maximum_iterations,

@@ -13,6 +13,9 @@
 #include <vector>
 
 class Epetra_MultiVector;
+class Epetra_LinearProblem;
+class Epetra_CrsMatrix;
+class Amesos_BaseSolver;
 
 namespace glide
 {
@@ -41,6 +44,8 @@ namespace glide
     clear()
     {
       direct.reset();
+      direct_problem.reset();
+      factored = nullptr;
       amg.reset();
     }
 
@@ -88,12 +93,19 @@ namespace glide
     description() const;
 
   private:
-    const LinearSolverParameters                               parameters;
-    MPI_Comm                                                   comm;
-    std::string                                                kind;
-    const dealii::TrilinosWrappers::SparseMatrix              *matrix = nullptr;
-    dealii::SolverControl                                      direct_control;
-    std::unique_ptr<dealii::TrilinosWrappers::SolverDirect>    direct;
+    const LinearSolverParameters                  parameters;
+    MPI_Comm                                      comm;
+    std::string                                   kind;
+    const dealii::TrilinosWrappers::SparseMatrix *matrix = nullptr;
+    /// The direct solver (Amesos) and its linear problem. Its symbolic
+    /// factorization (ordering and analysis) depends on the sparsity
+    /// pattern only: it is kept while the matrix stays the same object
+    /// with the same pattern (the Newton iterations between two clear()),
+    /// and only the numeric factorization is redone.
+    std::unique_ptr<Epetra_LinearProblem> direct_problem;
+    std::unique_ptr<Amesos_BaseSolver>    direct;
+    const Epetra_CrsMatrix               *factored         = nullptr;
+    long long                             factored_entries = -1;
     std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> amg;
     std::unique_ptr<Epetra_MultiVector>                        null_space;
     std::unique_ptr<MultiplierCondensation>                    condensation;
