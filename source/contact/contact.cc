@@ -1,3 +1,4 @@
+#include <glide/base/collective_failure.h>
 #include <glide/contact/contact.h>
 #include <glide/contact/small_sliding_formulation.h>
 #include <glide/output/statistics.h>
@@ -533,12 +534,15 @@ namespace glide
       std::pair<types::global_dof_index, std::vector<types::global_dof_index>>>
       blocks;
     why_not.clear();
-    if (Utilities::MPI::n_mpi_processes(comm) > 1)
-      {
-        why_not = "the contact multipliers are eliminated on one process "
-                  "only for now";
-        return {};
-      }
+    // Under MPI each process checks its own slave nodes; the first reason
+    // in rank order holds for every process, so that all of them take the
+    // same solver.
+    const auto agreed = [this, &why_not, &blocks]() {
+      why_not = first_failure_on_any_process(why_not, comm);
+      if (!why_not.empty())
+        blocks.clear();
+      return blocks;
+    };
     std::set<types::global_dof_index> masters, slaves;
     for (const auto &pair : pairs)
       if (const auto *surface = pair.formulation->master_surface())
@@ -555,7 +559,7 @@ namespace glide
           {
             why_not = "'" + pair.formulation->name() + "' (" + name +
                       ") spreads each contact force over several slave nodes";
-            return {};
+            return agreed();
           }
         for (const auto &node : pair.nodes)
           {
@@ -568,13 +572,13 @@ namespace glide
                   {
                     why_not = "the slave node at (" + x.str() + ") of " + name +
                               " is a hanging node (a refined slave surface)";
-                    return {};
+                    return agreed();
                   }
                 if (masters.count(d) > 0 || !slaves.insert(d).second)
                   {
                     why_not = "the slave node at (" + x.str() + ") of " + name +
                               " is on two contact surfaces";
-                    return {};
+                    return agreed();
                   }
               }
             blocks.emplace_back(node.multiplier,
@@ -583,7 +587,7 @@ namespace glide
           }
       }
     std::sort(blocks.begin(), blocks.end());
-    return blocks;
+    return agreed();
   }
 
   template <int dim>
@@ -717,14 +721,16 @@ namespace glide
           }
         // The force on the master surface of a body (R14.6: the exact
         // reaction of the slave's): lambda times the force direction G in
-        // the rows of the DoFs that are not slave DoFs (the linearization
-        // lists DoFs node by node, components in order).
+        // the rows of the master surface's DoFs (the linearization lists
+        // DoFs node by node, components in order; its slave DoFs may be
+        // those of another process's nodes, in a surface-to-surface region
+        // or a mortar facet cut by the partition).
         Tensor<1, dim> master_force;
-        if (pair.formulation->master_surface() != nullptr)
+        if (const auto *surface = pair.formulation->master_surface())
           {
-            std::set<types::global_dof_index> slave_dofs;
-            for (const auto &node : pair.nodes)
-              slave_dofs.insert(node.dofs.begin(), node.dofs.end());
+            std::set<types::global_dof_index> master_dofs;
+            for (const auto &node : surface->get_nodes())
+              master_dofs.insert(node.dofs.begin(), node.dofs.end());
             typename Formulation<dim>::Linearization l;
             l.derivatives = false;
             for (unsigned int i = 0; i < s.size(); ++i)
@@ -732,7 +738,7 @@ namespace glide
                 {
                   pair.formulation->linearize(i, s[i], U, l);
                   for (unsigned int a = 0; a < l.dofs.size(); ++a)
-                    if (slave_dofs.count(l.dofs[a]) == 0)
+                    if (master_dofs.count(l.dofs[a]) > 0)
                       master_force[a % dim] += f[i].lambda * l.force(a);
                 }
             master_force = Utilities::MPI::sum(master_force, comm);
@@ -837,8 +843,21 @@ namespace glide
         // force, or (surface to surface) its share of the forces of every
         // constraint whose region holds it.
         std::vector<double> nodal(pair.nodes.size(), 0.);
+        std::vector<std::pair<types::global_dof_index, double>> elsewhere;
         for (unsigned int i = 0; i < s.size(); ++i)
-          pair.formulation->distribute(i, f[i].lambda, nodal);
+          pair.formulation->distribute(i, f[i].lambda, nodal, elsewhere);
+        // Under MPI: the shares of slave nodes of other processes (regions
+        // cut by the partition) to their owners.
+        if (Utilities::MPI::max(elsewhere.empty() ? 0 : 1, comm) > 0)
+          {
+            std::map<types::global_dof_index, unsigned int> mine;
+            for (unsigned int i = 0; i < pair.nodes.size(); ++i)
+              mine[pair.nodes[i].dofs[0]] = i;
+            for (const auto &part : Utilities::MPI::all_gather(comm, elsewhere))
+              for (const auto &[dof, share] : part)
+                if (const auto it = mine.find(dof); it != mine.end())
+                  nodal[it->second] += share;
+          }
         // Gathered as numbers: X, x, COPEN, force, CPRESS, CSTATUS, CSLIP,
         // normal, tangents, slip components.
         constexpr unsigned int n_values = 3 * dim + 5 + (dim - 1) * (dim + 1);

@@ -113,9 +113,11 @@ namespace glide
 
   template <int dim>
   void
-  Formulation<dim>::distribute(const unsigned int   i,
-                               const double         lambda,
-                               std::vector<double> &nodal) const
+  Formulation<dim>::distribute(
+    const unsigned int   i,
+    const double         lambda,
+    std::vector<double> &nodal,
+    std::vector<std::pair<types::global_dof_index, double>> &) const
   {
     nodal[i] += lambda;
   }

@@ -116,7 +116,6 @@ namespace glide
   SmallSlidingFormulation<dim>::evaluate(const unsigned int i,
                                          const VectorType  &U) const
   {
-    const auto     &nodes = *this->nodes;
     Constraint<dim> s;
     s.x = this->position(i, U);
     // The gap to the node's tangent plane; a node without an anchor is
@@ -132,10 +131,9 @@ namespace glide
         s.point = Point<dim>();
         for (unsigned int k = 0; k < a.region.size(); ++k)
           {
-            const auto &other = nodes[a.region[k]];
+            const Point<dim> x = region_position(a.region[k], U);
             for (unsigned int d = 0; d < dim; ++d)
-              s.point[d] +=
-                a.participation[k] * (other.X[d] + U[other.dofs[d]]);
+              s.point[d] += a.participation[k] * x[d];
           }
       }
     if (a.found && this->surface)
@@ -186,7 +184,7 @@ namespace glide
           slaves;
         if (a.sts)
           for (const auto k : a.region)
-            slaves.emplace_back(nodes[k].dofs, this->position(k, U));
+            slaves.emplace_back(region_dofs(k), region_position(k, U));
         else
           slaves.emplace_back(node.dofs, s.x);
         planes->linearize(a, slaves, l);
@@ -198,7 +196,7 @@ namespace glide
     const auto                     &region = a.sts ? a.region : single;
     l.dofs.clear();
     for (const auto k : region)
-      l.dofs.insert(l.dofs.end(), nodes[k].dofs.begin(), nodes[k].dofs.end());
+      l.dofs.insert(l.dofs.end(), region_dofs(k).begin(), region_dofs(k).end());
     const unsigned int n = l.dofs.size();
     l.gap                = s.gap;
     l.normal             = s.normal;
@@ -218,11 +216,10 @@ namespace glide
     const VectorType &,
     std::vector<types::global_dof_index> &dofs)
   {
-    const auto &nodes = *this->nodes;
     // Surface to surface: the averaging region.
     for (const auto k : anchors[i].region)
       for (unsigned int d = 0; d < dim; ++d)
-        dofs.push_back(nodes[k].dofs[d]);
+        dofs.push_back(region_dofs(k)[d]);
     // The fixed list of master nodes (R11.3).
     if (this->surface)
       for (const auto k : anchors[i].list)
@@ -245,9 +242,11 @@ namespace glide
 
   template <int dim>
   void
-  SmallSlidingFormulation<dim>::distribute(const unsigned int   i,
-                                           const double         lambda,
-                                           std::vector<double> &nodal) const
+  SmallSlidingFormulation<dim>::distribute(
+    const unsigned int                                       i,
+    const double                                             lambda,
+    std::vector<double>                                     &nodal,
+    std::vector<std::pair<types::global_dof_index, double>> &elsewhere) const
   {
     // Surface to surface: the participation-weighted share of the forces
     // of every constraint whose region holds the node.
@@ -258,7 +257,48 @@ namespace glide
         return;
       }
     for (unsigned int k = 0; k < a.region.size(); ++k)
-      nodal[a.region[k]] += a.participation[k] * lambda;
+      if (a.region[k] < nodal.size())
+        nodal[a.region[k]] += a.participation[k] * lambda;
+      else
+        elsewhere.emplace_back(region_dofs(a.region[k])[0],
+                               a.participation[k] * lambda);
+  }
+
+  template <int dim>
+  void
+  SmallSlidingFormulation<dim>::read_dofs(
+    std::vector<types::global_dof_index> &dofs) const
+  {
+    Formulation<dim>::read_dofs(dofs);
+    for (const auto &n : neighbours)
+      dofs.insert(dofs.end(), n.dofs.begin(), n.dofs.end());
+  }
+
+  template <int dim>
+  const Point<dim> &
+  SmallSlidingFormulation<dim>::region_X(const unsigned int k) const
+  {
+    const auto &nodes = *this->nodes;
+    return k < nodes.size() ? nodes[k].X : neighbours[k - nodes.size()].X;
+  }
+
+  template <int dim>
+  const std::array<types::global_dof_index, dim> &
+  SmallSlidingFormulation<dim>::region_dofs(const unsigned int k) const
+  {
+    const auto &nodes = *this->nodes;
+    return k < nodes.size() ? nodes[k].dofs : neighbours[k - nodes.size()].dofs;
+  }
+
+  template <int dim>
+  Point<dim>
+  SmallSlidingFormulation<dim>::region_position(const unsigned int k,
+                                                const VectorType  &U) const
+  {
+    Point<dim> x = region_X(k);
+    for (unsigned int d = 0; d < dim; ++d)
+      x[d] += U[region_dofs(k)[d]];
+    return x;
   }
 
   template <int dim>
@@ -377,12 +417,7 @@ namespace glide
     const auto &scene = this->context.scene;
     const auto  comm  = this->context.comm;
     const auto &nodes = *this->nodes;
-    require(Utilities::MPI::n_mpi_processes(comm) == 1,
-            "Contact pair '" + p.name +
-              "': 'Formulation = surface to surface' runs on one process for "
-              "now (its averaging regions would be cut at process "
-              "boundaries); run glide without mpirun (or with -np 1).");
-    const bool node_based =
+    const bool  node_based =
       std::any_of(scene.node_sets.begin(),
                   scene.node_sets.end(),
                   [&](const auto &n) { return n.name == p.slave; });
@@ -405,9 +440,49 @@ namespace glide
                          face_node_indices<dim>(dof_handler.get_fe(), cell, f))
                       symmetric[c].insert(cell_dofs[k[c]]);
                   }
+    // Region nodes by x DoF: this process's slave nodes, then (under MPI)
+    // those of other processes that lie in its regions. Every process
+    // sends its slave nodes' DoFs and reference positions to all (O(slave
+    // surface) per process, like the gathered master surface), so that a
+    // region cut by the partition is the region of the serial run.
     std::map<types::global_dof_index, unsigned int> index;
     for (unsigned int i = 0; i < nodes.size(); ++i)
       index[nodes[i].dofs[0]] = i;
+    std::map<types::global_dof_index, Neighbour> others;
+    neighbours.clear();
+    if (Utilities::MPI::n_mpi_processes(comm) > 1 && !node_based)
+      {
+        std::vector<double> packed; // DoFs (exact below 2^53), then X
+        for (const auto &node : nodes)
+          {
+            for (const auto d : node.dofs)
+              packed.push_back(static_cast<double>(d));
+            for (unsigned int d = 0; d < dim; ++d)
+              packed.push_back(node.X[d]);
+          }
+        for (const auto &part : Utilities::MPI::all_gather(comm, packed))
+          for (std::size_t k = 0; k + 2 * dim <= part.size(); k += 2 * dim)
+            {
+              Neighbour n;
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  n.dofs[d] = static_cast<types::global_dof_index>(part[k + d]);
+                  n.X[d]    = part[k + dim + d];
+                }
+              if (index.count(n.dofs[0]) == 0)
+                others[n.dofs[0]] = n;
+            }
+      }
+    const auto region_index = [&](const types::global_dof_index dof) {
+      if (const auto it = index.find(dof); it != index.end())
+        return static_cast<int>(it->second);
+      const auto it = others.find(dof);
+      if (it == others.end())
+        return -1;
+      index[dof] = nodes.size() + neighbours.size();
+      neighbours.push_back(it->second);
+      return static_cast<int>(index[dof]);
+    };
 
     unsigned int n_node_based = 0, n_missed = 0, n_same = 0;
     for (unsigned int i = 0; i < nodes.size(); ++i)
@@ -428,10 +503,10 @@ namespace glide
         std::vector<unsigned int> region{i};
         std::vector<double>       phi{node.mass.at(node.dofs[0])};
         for (const auto &[dof, m] : node.mass)
-          if (dof != node.dofs[0] && index.count(dof))
+          if (const int k = region_index(dof); dof != node.dofs[0] && k >= 0)
             {
-              region.push_back(index[dof]);
-              X.push_back(nodes[index[dof]].X);
+              region.push_back(k);
+              X.push_back(region_X(k));
               phi.push_back(m);
             }
         double total = 0.;
@@ -461,6 +536,26 @@ namespace glide
         else if (a.found)
           ++n_missed;
         anchors.push_back(a);
+      }
+    // Under MPI: how many regions the partition cuts (their nodes of other
+    // processes are read as ghosts, their forces sent to the owners).
+    if (Utilities::MPI::n_mpi_processes(comm) > 1)
+      {
+        unsigned int n_cut = 0;
+        for (const auto &a : anchors)
+          n_cut += std::any_of(a.region.begin(),
+                               a.region.end(),
+                               [&](const unsigned int k) {
+                                 return k >= nodes.size();
+                               }) ?
+                     1 :
+                     0;
+        n_cut = Utilities::MPI::sum(n_cut, comm);
+        if (Utilities::MPI::this_mpi_process(comm) == 0)
+          this->context.note("contact pair '" + p.name +
+                             "': surface to surface: " + std::to_string(n_cut) +
+                             " averaging region(s) hold slave nodes of "
+                             "another process");
       }
     n_node_based = Utilities::MPI::sum(n_node_based, comm);
     n_missed     = Utilities::MPI::sum(n_missed, comm);

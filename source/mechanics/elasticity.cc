@@ -1,3 +1,4 @@
+#include <glide/base/collective_failure.h>
 #include <glide/mechanics/checked_function.h>
 #include <glide/mechanics/elasticity.h>
 #include <glide/mechanics/rotation.h>
@@ -25,26 +26,13 @@ namespace glide
   void
   throw_on_any_process(const std::string &failure, MPI_Comm comm)
   {
-    if (Utilities::MPI::max(failure.empty() ? 0 : 1, comm) == 0)
-      return;
-    std::string message;
-    for (const auto &m : Utilities::MPI::gather(comm, failure, 0))
-      if (message.empty() && !m.empty())
-        message = m;
-    message = Utilities::MPI::broadcast(comm, message, 0);
-    throw std::runtime_error(message);
+    throw_first_failure<std::runtime_error>(failure, comm);
   }
 
   void
   throw_input_error_on_any_process(const std::string &failure, MPI_Comm comm)
   {
-    if (Utilities::MPI::max(failure.empty() ? 0 : 1, comm) == 0)
-      return;
-    std::string message;
-    for (const auto &m : Utilities::MPI::gather(comm, failure, 0))
-      if (message.empty() && !m.empty())
-        message = m;
-    throw InputError(Utilities::MPI::broadcast(comm, message, 0));
+    throw_first_failure<InputError>(failure, comm);
   }
 
   namespace

@@ -1,3 +1,4 @@
+#include <glide/base/collective_failure.h>
 #include <glide/output/interruption.h>
 #include <glide/output/output_directory.h>
 #include <glide/output/output_error.h>
@@ -26,14 +27,7 @@ namespace glide
   void
   throw_output_error_on_any_process(const std::string &failure, MPI_Comm comm)
   {
-    using namespace dealii::Utilities::MPI;
-    if (max(failure.empty() ? 0 : 1, comm) == 0)
-      return;
-    std::string message;
-    for (const auto &m : gather(comm, failure, 0))
-      if (message.empty() && !m.empty())
-        message = m;
-    throw OutputError(broadcast(comm, message, 0));
+    throw_first_failure<OutputError>(failure, comm);
   }
 
   namespace

@@ -1,8 +1,14 @@
+#include <glide/base/collective_failure.h>
 #include <glide/solver/multiplier_condensation.h>
 
 #include <deal.II/base/mpi.h>
 
+#include <Epetra_Import.h>
+#include <Epetra_Map.h>
+
+#include <algorithm>
 #include <cmath>
+#include <set>
 #include <stdexcept>
 
 namespace glide
@@ -65,19 +71,52 @@ namespace glide
   } // namespace
 
   MultiplierCondensation::MultiplierCondensation(
-    std::vector<Block>            blocks_in,
+    std::vector<Block>            own_blocks,
     const types::global_dof_index n_displacements,
     const IndexSet               &owned_in,
     MPI_Comm                      comm_in)
-    : blocks(std::move(blocks_in))
-    , n_u(n_displacements)
+    : n_u(n_displacements)
     , owned(owned_in)
     , comm(comm_in)
+    , parallel(Utilities::MPI::n_mpi_processes(comm_in) > 1)
   {
-    if (Utilities::MPI::n_mpi_processes(comm) > 1)
-      throw std::logic_error(
-        "MultiplierCondensation: one process only (issue 15)");
     owned_displacements = owned.get_view(0, n_u);
+    // Every process learns every block (its multiplier and its node's
+    // DoFs): a master row may hold the multiplier of a slave node of
+    // another process, and a row's columns may be such nodes. The blocks
+    // of each process follow those of the lower ranks, as the multipliers
+    // are numbered (Contact::setup).
+    const unsigned int n_own = own_blocks.size();
+    first_own                = 0;
+    if (parallel)
+      {
+        std::vector<types::global_dof_index> packed;
+        for (const auto &block : own_blocks)
+          {
+            packed.push_back(block.multiplier);
+            packed.push_back(block.dofs.size());
+            packed.insert(packed.end(), block.dofs.begin(), block.dofs.end());
+          }
+        const auto all  = Utilities::MPI::all_gather(comm, packed);
+        const auto rank = Utilities::MPI::this_mpi_process(comm);
+        for (unsigned int p = 0; p < all.size(); ++p)
+          {
+            if (p == rank)
+              first_own = blocks.size();
+            for (std::size_t i = 0; i < all[p].size();)
+              {
+                Block      block{all[p][i], {}};
+                const auto n = all[p][i + 1];
+                block.dofs.assign(all[p].begin() + i + 2,
+                                  all[p].begin() + i + 2 + n);
+                blocks.push_back(std::move(block));
+                i += 2 + n;
+              }
+          }
+      }
+    else
+      blocks = std::move(own_blocks);
+    end_own = first_own + n_own;
     block_of.assign(n_u, -1);
     component_of.assign(n_u, 0);
     for (unsigned int j = 0; j < blocks.size(); ++j)
@@ -95,6 +134,13 @@ namespace glide
                 "MultiplierCondensation: a DoF in two blocks");
             block_of[d]     = j;
             component_of[d] = l;
+            // A node's DoFs are owned with its multiplier (one process
+            // owns all DoFs of a vertex, and the multiplier is numbered by
+            // the process that owns the slave node).
+            if (owned.is_element(d) != (j >= first_own && j < end_own))
+              throw std::logic_error("MultiplierCondensation: a slave "
+                                     "node's DoFs and its multiplier are "
+                                     "owned by different processes");
           }
       }
     states.resize(blocks.size());
@@ -105,18 +151,42 @@ namespace glide
   MultiplierCondensation::~MultiplierCondensation() = default;
 
   void
+  MultiplierCondensation::row_view(const types::global_dof_index row,
+                                   int                          &n,
+                                   double                      *&values,
+                                   int                         *&idx,
+                                   const Epetra_BlockMap       *&columns) const
+  {
+    const auto &A   = J->trilinos_matrix();
+    int         lid = A.RowMap().LID(static_cast<int>(row));
+    if (lid >= 0)
+      {
+        A.ExtractMyRowView(lid, n, values, idx);
+        columns = &A.ColMap();
+        return;
+      }
+    lid = remote ? remote->RowMap().LID(static_cast<int>(row)) : -1;
+    if (lid < 0)
+      throw std::logic_error("MultiplierCondensation: row " +
+                             std::to_string(row) +
+                             " is neither owned nor imported");
+    remote->ExtractMyRowView(lid, n, values, idx);
+    columns = &remote->ColMap();
+  }
+
+  void
   MultiplierCondensation::row_of_j(
     const types::global_dof_index         row,
     int                                  &n,
     double                              *&values,
     std::vector<types::global_dof_index> &columns) const
   {
-    const auto &A   = J->trilinos_matrix();
-    int        *idx = nullptr;
-    A.ExtractMyRowView(A.RowMap().LID(static_cast<int>(row)), n, values, idx);
+    int                   *idx            = nullptr;
+    const Epetra_BlockMap *map_of_columns = nullptr;
+    row_view(row, n, values, idx, map_of_columns);
     columns.resize(n);
     for (int e = 0; e < n; ++e)
-      columns[e] = A.ColMap().GID(idx[e]);
+      columns[e] = map_of_columns->GID(idx[e]);
   }
 
   template <typename Add>
@@ -124,17 +194,18 @@ namespace glide
   MultiplierCondensation::condensed_row(const types::global_dof_index row,
                                         Add                         &&add) const
   {
-    const auto &A = J->trilinos_matrix();
-    // Rows through their local views: for_each(row, f) calls f(column,
-    // value) for every entry of row @p row of J.
-    const auto for_each = [&A](const types::global_dof_index r, const auto &f) {
-      int     n      = 0;
-      double *values = nullptr;
-      int    *idx    = nullptr;
-      A.ExtractMyRowView(A.RowMap().LID(static_cast<int>(r)), n, values, idx);
+    // Rows through their local views (of J, or of the rows imported from
+    // other processes): for_each(row, f) calls f(column, value) for every
+    // entry of row @p row of J.
+    const auto for_each = [this](const types::global_dof_index r,
+                                 const auto                   &f) {
+      int                    n      = 0;
+      double                *values = nullptr;
+      int                   *idx    = nullptr;
+      const Epetra_BlockMap *cmap   = nullptr;
+      row_view(r, n, values, idx, cmap);
       for (int e = 0; e < n; ++e)
-        f(static_cast<types::global_dof_index>(A.ColMap().GID(idx[e])),
-          values[e]);
+        f(static_cast<types::global_dof_index>(cmap->GID(idx[e])), values[e]);
     };
     // Columns of closed nodes in their frames: the unknown of direction k
     // of the node is sum_l frame[l][k] du_l.
@@ -192,140 +263,276 @@ namespace glide
   }
 
   void
-  MultiplierCondensation::condense(const TrilinosWrappers::SparseMatrix &J_in)
+  MultiplierCondensation::compute_state(const unsigned int j)
   {
-    J = &J_in;
     std::vector<types::global_dof_index> columns;
     int                                  n      = 0;
     double                              *values = nullptr;
-    for (unsigned int j = 0; j < blocks.size(); ++j)
+    const auto                          &block  = blocks[j];
+    State                               &s      = states[j];
+    const auto                           m      = block.multiplier;
+    double                               E      = 0.;
+    double                               C      = 0.;
+    row_of_j(m, n, values, columns);
+    for (int e = 0; e < n; ++e)
+      if (columns[e] == m)
+        E = values[e];
+      else
+        C = std::max(C, std::abs(values[e]));
+    s.closed = (E == 0.);
+    if (!s.closed && C != 0.)
+      throw std::logic_error("MultiplierCondensation: an open multiplier "
+                             "row with displacement entries");
+    s.open_diagonal = E;
+    s.b.assign(block.dofs.size(), 0.);
+    s.b_norm2 = 0.;
+    s.frame.clear();
+    s.scale = 1.;
+    for (unsigned int l = 0; l < block.dofs.size(); ++l)
       {
-        const auto &block = blocks[j];
-        State      &s     = states[j];
-        const auto  m     = block.multiplier;
-        double      E     = 0.;
-        double      C     = 0.;
-        row_of_j(m, n, values, columns);
+        row_of_j(block.dofs[l], n, values, columns);
         for (int e = 0; e < n; ++e)
           if (columns[e] == m)
-            E = values[e];
-          else
-            C = std::max(C, std::abs(values[e]));
-        s.closed = (E == 0.);
-        if (!s.closed && C != 0.)
-          throw std::logic_error("MultiplierCondensation: an open multiplier "
-                                 "row with displacement entries");
-        s.open_diagonal = E;
-        s.b.assign(block.dofs.size(), 0.);
-        s.b_norm2 = 0.;
-        for (unsigned int l = 0; l < block.dofs.size(); ++l)
-          {
-            row_of_j(block.dofs[l], n, values, columns);
-            for (int e = 0; e < n; ++e)
-              if (columns[e] == m)
-                s.b[l] = values[e];
-              else if (columns[e] >= n_u && values[e] != 0.)
-                throw std::logic_error(
-                  "MultiplierCondensation: a slave node's rows hold the "
-                  "force of another node's multiplier");
-            s.b_norm2 += s.b[l] * s.b[l];
-          }
-        if (!s.closed)
-          continue;
-        if (s.b_norm2 == 0.)
-          throw std::runtime_error(
-            "a closed slave node whose displacements are all constrained "
-            "cannot be condensed; use 'Linear solver/Type = direct'");
-        std::vector<double> normal(s.b);
-        for (auto &v : normal)
-          v /= std::sqrt(s.b_norm2);
-        s.frame = frame_of(normal);
-        // The constraint row's entry in the normal direction of the node:
-        // c dg/du . n, negative for the usual sign of the gap, of the size
-        // of the pair's contact modulus c.
-        double diagonal = 0.;
-        row_of_j(m, n, values, columns);
+            s.b[l] = values[e];
+          else if (columns[e] >= n_u && values[e] != 0.)
+            throw std::logic_error(
+              "MultiplierCondensation: a slave node's rows hold the "
+              "force of another node's multiplier");
+        s.b_norm2 += s.b[l] * s.b[l];
+      }
+    if (!s.closed)
+      return;
+    if (s.b_norm2 == 0.)
+      throw std::runtime_error(
+        "a closed slave node whose displacements are all constrained "
+        "cannot be condensed; use 'Linear solver/Type = direct'");
+    std::vector<double> normal(s.b);
+    for (auto &v : normal)
+      v /= std::sqrt(s.b_norm2);
+    s.frame = frame_of(normal);
+    // The constraint row's entry in the normal direction of the node:
+    // c dg/du . n, negative for the usual sign of the gap, of the size
+    // of the pair's contact modulus c.
+    double diagonal = 0.;
+    row_of_j(m, n, values, columns);
+    for (int e = 0; e < n; ++e)
+      if (columns[e] < n_u && block_of[columns[e]] == static_cast<int>(j))
+        diagonal += values[e] * s.frame[component_of[columns[e]]][0];
+    if (diagonal == 0.)
+      throw std::runtime_error(
+        "a closed slave node's constraint does not involve its normal "
+        "displacement; use 'Linear solver/Type = direct'");
+    // The row is scaled (an exact operation on an equation) so that
+    // its diagonal is the node's normal stiffness n^T A_SS n: AMG then
+    // sees the normal unknown of a closed node as stiff as its
+    // tangential ones, whatever the ratio of c to the slave's modulus.
+    // With the row of size c, a slave 1e6 times stiffer than its master
+    // (c the soft side's modulus) kept GMRES + AMG from converging in
+    // 2000 iterations, and the load steps were cut back. Where
+    // n^T A_SS n is not positive (possible at finite strain), only the
+    // sign is turned.
+    double normal_stiffness = 0.;
+    for (unsigned int l = 0; l < block.dofs.size(); ++l)
+      {
+        row_of_j(block.dofs[l], n, values, columns);
         for (int e = 0; e < n; ++e)
           if (columns[e] < n_u && block_of[columns[e]] == static_cast<int>(j))
-            diagonal += values[e] * s.frame[component_of[columns[e]]][0];
-        if (diagonal == 0.)
-          throw std::runtime_error(
-            "a closed slave node's constraint does not involve its normal "
-            "displacement; use 'Linear solver/Type = direct'");
-        // The row is scaled (an exact operation on an equation) so that
-        // its diagonal is the node's normal stiffness n^T A_SS n: AMG then
-        // sees the normal unknown of a closed node as stiff as its
-        // tangential ones, whatever the ratio of c to the slave's modulus.
-        // With the row of size c, a slave 1e6 times stiffer than its master
-        // (c the soft side's modulus) kept GMRES + AMG from converging in
-        // 2000 iterations, and the load steps were cut back. Where
-        // n^T A_SS n is not positive (possible at finite strain), only the
-        // sign is turned.
-        double normal_stiffness = 0.;
-        for (unsigned int l = 0; l < block.dofs.size(); ++l)
-          {
-            row_of_j(block.dofs[l], n, values, columns);
-            for (int e = 0; e < n; ++e)
-              if (columns[e] < n_u &&
-                  block_of[columns[e]] == static_cast<int>(j))
-                normal_stiffness +=
-                  normal[l] * values[e] * normal[component_of[columns[e]]];
-          }
-        s.scale = normal_stiffness > 0. ? normal_stiffness / diagonal :
-                  diagonal > 0.         ? 1. :
-                                          -1.;
+            normal_stiffness +=
+              normal[l] * values[e] * normal[component_of[columns[e]]];
       }
+    s.scale = normal_stiffness > 0. ? normal_stiffness / diagonal :
+              diagonal > 0.         ? 1. :
+                                      -1.;
+  }
+
+  void
+  MultiplierCondensation::share_states()
+  {
+    // Packed per block: closed, E_jj, scale, |b|^2, b, frame.
+    std::vector<double> packed;
+    for (unsigned int j = first_own; j < end_own; ++j)
+      {
+        const auto &s = states[j];
+        packed.insert(
+          packed.end(),
+          {s.closed ? 1. : 0., s.open_diagonal, s.scale, s.b_norm2});
+        packed.insert(packed.end(), s.b.begin(), s.b.end());
+        if (s.closed)
+          for (const auto &row : s.frame)
+            packed.insert(packed.end(), row.begin(), row.end());
+      }
+    const auto   all  = Utilities::MPI::all_gather(comm, packed);
+    unsigned int j    = 0;
+    const auto   rank = Utilities::MPI::this_mpi_process(comm);
+    for (unsigned int p = 0; p < all.size(); ++p)
+      {
+        if (p == rank)
+          {
+            j = end_own;
+            continue;
+          }
+        for (std::size_t i = 0; i < all[p].size(); ++j)
+          {
+            State             &s = states[j];
+            const unsigned int d = blocks[j].dofs.size();
+            s.closed             = all[p][i] != 0.;
+            s.open_diagonal      = all[p][i + 1];
+            s.scale              = all[p][i + 2];
+            s.b_norm2            = all[p][i + 3];
+            s.b.assign(all[p].begin() + i + 4, all[p].begin() + i + 4 + d);
+            i += 4 + d;
+            s.frame.clear();
+            if (s.closed)
+              for (unsigned int l = 0; l < d; ++l, i += d)
+                s.frame.emplace_back(all[p].begin() + i,
+                                     all[p].begin() + i + d);
+          }
+      }
+  }
+
+  void
+  MultiplierCondensation::import_rows()
+  {
+    // The rows of the closed slave nodes of other processes whose
+    // multipliers reach this process's rows (the fill of a master row).
+    remote.reset();
+    if (!parallel)
+      return;
+    std::set<int> needed;
+    for (const auto row : owned_displacements)
+      {
+        int                    n      = 0;
+        double                *values = nullptr;
+        int                   *idx    = nullptr;
+        const Epetra_BlockMap *cmap   = nullptr;
+        row_view(row, n, values, idx, cmap);
+        for (int e = 0; e < n; ++e)
+          {
+            const types::global_dof_index c = cmap->GID(idx[e]);
+            if (c < n_u || values[e] == 0.)
+              continue;
+            const unsigned int j = c - n_u;
+            if (states[j].closed && (j < first_own || j >= end_own))
+              for (const auto d : blocks[j].dofs)
+                needed.insert(static_cast<int>(d));
+          }
+      }
+    const auto            &A = J->trilinos_matrix();
+    const std::vector<int> rows(needed.begin(), needed.end());
+    Epetra_Map             row_map(-1, rows.size(), rows.data(), 0, A.Comm());
+    Epetra_Import          importer(row_map, A.RowMap());
+    remote = std::make_unique<Epetra_CrsMatrix>(Copy, row_map, 0);
+    // Epetra returns positive codes as warnings (storage grown for the
+    // rows received): only a negative one is an error, and FillComplete
+    // is collective, so every process calls it whatever its code.
+    const int import = remote->Import(A, importer, Insert);
+    const int fill   = remote->FillComplete(A.DomainMap(), A.RangeMap());
+    throw_first_failure<std::runtime_error>(
+      (import < 0 || fill < 0) ?
+        "the elimination of the contact multipliers could not import "
+        "the rows of other processes' slave nodes (Epetra error " +
+          std::to_string(std::min(import, fill)) + ")" :
+        std::string(),
+      comm);
+  }
+
+  void
+  MultiplierCondensation::condense(const TrilinosWrappers::SparseMatrix &J_in)
+  {
+    J = &J_in;
+    remote.reset();
+    std::string failure;
+    try
+      {
+        for (unsigned int j = first_own; j < end_own; ++j)
+          compute_state(j);
+      }
+    catch (const std::exception &e)
+      {
+        failure = e.what();
+      }
+    if (parallel)
+      {
+        throw_first_failure<std::runtime_error>(failure, comm);
+        share_states();
+        import_rows();
+      }
+    else if (!failure.empty())
+      throw std::runtime_error(failure);
 
     condensed.reset(); // before its successor is built (peak memory)
-    // Two passes over the rows: the number of distinct columns (Epetra's
-    // static profile), then the values.
-    const unsigned int n_rows = owned_displacements.n_elements();
-    std::vector<int>   counts(n_rows, 0);
-    std::vector<types::global_dof_index> stamp(n_u, numbers::invalid_dof_index);
-    unsigned int                         r = 0;
-    for (const auto row : owned_displacements)
+    // Local work: an error here is thrown on every process before the
+    // collective FillComplete.
+    failure.clear();
+    try
       {
-        condensed_row(row, [&](const types::global_dof_index c, const double) {
-          if (stamp[c] != row)
-            {
-              stamp[c] = row;
-              ++counts[r];
-            }
-        });
-        ++r;
+        // Two passes over the rows: the number of distinct columns (Epetra's
+        // static profile), then the values.
+        const unsigned int n_rows = owned_displacements.n_elements();
+        std::vector<int>   counts(n_rows, 0);
+        std::vector<types::global_dof_index> stamp(n_u,
+                                                   numbers::invalid_dof_index);
+        unsigned int                         r = 0;
+        for (const auto row : owned_displacements)
+          {
+            condensed_row(row,
+                          [&](const types::global_dof_index c, const double) {
+                            if (stamp[c] != row)
+                              {
+                                stamp[c] = row;
+                                ++counts[r];
+                              }
+                          });
+            ++r;
+          }
+        condensed =
+          std::make_unique<Epetra_CrsMatrix>(Copy, *map, counts.data(), true);
+        std::vector<double> work(n_u, 0.);
+        std::vector<int>    touched;
+        std::vector<double> row_values;
+        for (const auto row : owned_displacements)
+          {
+            touched.clear();
+            condensed_row(row,
+                          [&](const types::global_dof_index c, const double v) {
+                            if (stamp[c] != n_u + row)
+                              {
+                                stamp[c] = n_u + row;
+                                touched.push_back(c);
+                                work[c] = 0.;
+                              }
+                            work[c] += v;
+                          });
+            row_values.resize(touched.size());
+            for (unsigned int e = 0; e < touched.size(); ++e)
+              row_values[e] = work[touched[e]];
+            condensed->InsertGlobalValues(static_cast<int>(row),
+                                          touched.size(),
+                                          row_values.data(),
+                                          touched.data());
+          }
       }
-    condensed =
-      std::make_unique<Epetra_CrsMatrix>(Copy, *map, counts.data(), true);
-    std::vector<double> work(n_u, 0.);
-    std::vector<int>    touched;
-    std::vector<double> row_values;
-    for (const auto row : owned_displacements)
+    catch (const std::exception &e)
       {
-        touched.clear();
-        condensed_row(row,
-                      [&](const types::global_dof_index c, const double v) {
-                        if (stamp[c] != n_u + row)
-                          {
-                            stamp[c] = n_u + row;
-                            touched.push_back(c);
-                            work[c] = 0.;
-                          }
-                        work[c] += v;
-                      });
-        row_values.resize(touched.size());
-        for (unsigned int e = 0; e < touched.size(); ++e)
-          row_values[e] = work[touched[e]];
-        condensed->InsertGlobalValues(static_cast<int>(row),
-                                      touched.size(),
-                                      row_values.data(),
-                                      touched.data());
+        failure = e.what();
       }
+    if (parallel)
+      throw_first_failure<std::runtime_error>(failure, comm);
+    else if (!failure.empty())
+      throw std::runtime_error(failure);
     condensed->FillComplete(*map, *map);
 
     // What condense_rhs() and expand() need of J, so that J itself can be
     // released until the next Jacobian (LinearSolver::keeps_matrix()): the
     // multiplier entries of the rows of open nodes and master nodes, and
-    // the displacement part of the rows of closed nodes.
+    // the displacement part of the rows of this process's closed nodes.
+    // Under MPI also the entries of other processes those read: the
+    // right-hand side at the nodes of the multipliers coupled here, and
+    // the solution at the columns of the closed nodes' rows.
+    std::vector<types::global_dof_index> columns;
+    int                                  n      = 0;
+    double                              *values = nullptr;
+    std::vector<types::global_dof_index> rhs_reads, solution_reads;
     couplings.clear();
     for (const auto row : owned_displacements)
       {
@@ -335,11 +542,19 @@ namespace glide
         row_of_j(row, n, values, columns);
         for (int e = 0; e < n; ++e)
           if (columns[e] >= n_u && values[e] != 0.)
-            couplings.push_back(
-              {row, static_cast<unsigned int>(columns[e] - n_u), values[e]});
+            {
+              const unsigned int j = columns[e] - n_u;
+              couplings.push_back({row, j, values[e]});
+              if (states[j].closed)
+                rhs_reads.insert(rhs_reads.end(),
+                                 blocks[j].dofs.begin(),
+                                 blocks[j].dofs.end());
+              else
+                rhs_reads.push_back(blocks[j].multiplier);
+            }
       }
     closed_rows.assign(blocks.size(), {});
-    for (unsigned int j = 0; j < blocks.size(); ++j)
+    for (unsigned int j = first_own; j < end_own; ++j)
       if (states[j].closed)
         for (const auto d : blocks[j].dofs)
           {
@@ -347,9 +562,35 @@ namespace glide
             std::vector<std::pair<types::global_dof_index, double>> entries;
             for (int e = 0; e < n; ++e)
               if (columns[e] < n_u)
-                entries.emplace_back(columns[e], values[e]);
+                {
+                  entries.emplace_back(columns[e], values[e]);
+                  // A closed node's column is read in its frame: the
+                  // solution at all of the node's DoFs.
+                  const int jc = block_of[columns[e]];
+                  if (jc >= 0 && states[jc].closed)
+                    solution_reads.insert(solution_reads.end(),
+                                          blocks[jc].dofs.begin(),
+                                          blocks[jc].dofs.end());
+                  else
+                    solution_reads.push_back(columns[e]);
+                }
             closed_rows[j].push_back(std::move(entries));
           }
+    const auto ghosts_of = [](std::vector<types::global_dof_index> &reads,
+                              const IndexSet                       &own,
+                              const types::global_dof_index         size) {
+      std::sort(reads.begin(), reads.end());
+      reads.erase(std::unique(reads.begin(), reads.end()), reads.end());
+      IndexSet ghosts(size);
+      for (const auto i : reads)
+        if (!own.is_element(i))
+          ghosts.add_index(i);
+      ghosts.compress();
+      return ghosts;
+    };
+    rhs_ghosts      = ghosts_of(rhs_reads, owned, owned.size());
+    solution_ghosts = ghosts_of(solution_reads, owned_displacements, n_u);
+    remote.reset();
     J = nullptr;
   }
 
@@ -365,7 +606,8 @@ namespace glide
           const int                     jb  = block_of[row];
           if (jb >= 0 && states[jb].closed)
             {
-              // Q^T u_S: the mode's component along direction k.
+              // Q^T u_S: the mode's component along direction k (the
+              // node's DoFs are owned here with the row).
               const auto        &block = blocks[jb];
               const unsigned int k     = component_of[row];
               double             v     = 0.;
@@ -381,10 +623,26 @@ namespace glide
 
   void
   MultiplierCondensation::condense_rhs(
-    const TrilinosWrappers::MPI::Vector &b,
+    const TrilinosWrappers::MPI::Vector &b_in,
     TrilinosWrappers::MPI::Vector       &condensed_b) const
   {
-    condensed_b.reinit(owned_displacements, comm);
+    // Under MPI b at the nodes of the multipliers coupled to this
+    // process's rows, imported.
+    TrilinosWrappers::MPI::Vector ghosted;
+    if (parallel)
+      {
+        ghosted.reinit(b_in.locally_owned_elements(), rhs_ghosts, comm);
+        ghosted = b_in;
+      }
+    const TrilinosWrappers::MPI::Vector &b = parallel ? ghosted : b_in;
+    // The values are summed here and inserted once: a vector written by
+    // insertion on some processes and by addition on others is assembled
+    // differently by each (Epetra_FEVector::GlobalAssemble), and the
+    // processes then wait for each other forever.
+    std::vector<double> value(owned_displacements.n_elements(), 0.);
+    const auto at = [&](const types::global_dof_index row) -> double & {
+      return value[owned_displacements.index_within_set(row)];
+    };
     for (const auto row : owned_displacements)
       {
         const int jb = block_of[row];
@@ -401,7 +659,7 @@ namespace glide
           }
         else
           v = b(row);
-        condensed_b(row) = v;
+        at(row) = v;
       }
     // The multipliers in the other rows: closed ones through the slave
     // node's rows, open ones known.
@@ -414,37 +672,53 @@ namespace glide
             double bf = 0.;
             for (unsigned int l = 0; l < s.b.size(); ++l)
               bf += s.b[l] * b(block.dofs[l]);
-            condensed_b(c.row) -= c.value * bf / s.b_norm2;
+            at(c.row) -= c.value * bf / s.b_norm2;
           }
         else
-          condensed_b(c.row) -= c.value * b(block.multiplier) / s.open_diagonal;
+          at(c.row) -= c.value * b(block.multiplier) / s.open_diagonal;
       }
+    condensed_b.reinit(owned_displacements, comm);
+    for (const auto row : owned_displacements)
+      condensed_b(row) = at(row);
     condensed_b.compress(VectorOperation::insert);
   }
 
   void
   MultiplierCondensation::expand(const TrilinosWrappers::MPI::Vector &b,
-                                 const TrilinosWrappers::MPI::Vector &xc,
+                                 const TrilinosWrappers::MPI::Vector &xc_in,
                                  TrilinosWrappers::MPI::Vector       &x) const
   {
+    // Under MPI the condensed solution at the columns of this process's
+    // closed nodes' rows, imported.
+    TrilinosWrappers::MPI::Vector ghosted;
+    if (parallel)
+      {
+        ghosted.reinit(owned_displacements, solution_ghosts, comm);
+        ghosted = xc_in;
+      }
+    const TrilinosWrappers::MPI::Vector &xc = parallel ? ghosted : xc_in;
     // du: the condensed unknowns, closed nodes rotated back (du_S = Q x_S).
     std::vector<double> du(n_u, 0.);
+    const auto          rotate_back = [&](const types::global_dof_index row) {
+      const int jb = block_of[row];
+      if (jb >= 0 && states[jb].closed)
+        {
+          const auto &block = blocks[jb];
+          double      v     = 0.;
+          for (unsigned int k = 0; k < block.dofs.size(); ++k)
+            v += states[jb].frame[component_of[row]][k] * xc(block.dofs[k]);
+          du[row] = v;
+        }
+      else
+        du[row] = xc(row);
+    };
     for (const auto row : owned_displacements)
-      {
-        const int jb = block_of[row];
-        if (jb >= 0 && states[jb].closed)
-          {
-            const auto &block = blocks[jb];
-            for (unsigned int k = 0; k < block.dofs.size(); ++k)
-              du[row] +=
-                states[jb].frame[component_of[row]][k] * xc(block.dofs[k]);
-          }
-        else
-          du[row] = xc(row);
-      }
+      rotate_back(row);
+    for (const auto row : solution_ghosts)
+      rotate_back(row);
     for (const auto row : owned_displacements)
       x(row) = du[row];
-    for (unsigned int j = 0; j < blocks.size(); ++j)
+    for (unsigned int j = first_own; j < end_own; ++j)
       {
         const auto &s     = states[j];
         const auto &block = blocks[j];
@@ -471,8 +745,8 @@ namespace glide
   MultiplierCondensation::n_closed() const
   {
     unsigned int n = 0;
-    for (const auto &s : states)
-      n += s.closed ? 1 : 0;
-    return n;
+    for (unsigned int j = first_own; j < end_own; ++j)
+      n += states[j].closed ? 1 : 0;
+    return parallel ? Utilities::MPI::sum(n, comm) : n;
   }
 } // namespace glide

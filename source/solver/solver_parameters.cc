@@ -69,7 +69,7 @@ namespace glide
                       "with rigid-body modes, for large 3D problems; with "
                       "hard contact it solves the displacement system left "
                       "once the contact multipliers are eliminated (node to "
-                      "surface and mortar, one process, no hanging nodes on "
+                      "surface and mortar, no hanging nodes on "
                       "slave surfaces; doc/theory/mortar.md). automatic: "
                       "direct in 2D and for 3D problems up to 'Automatic "
                       "direct limit' DoFs, amg above (direct, with a note in "

@@ -140,7 +140,8 @@ namespace glide
      * where they cannot be eliminated: a formulation that spreads a force
      * over several slave nodes (surface to surface, small sliding), a slave
      * node at a hanging node (tied to its neighbours), a node that is slave
-     * of two pairs or also on a master surface, or more than one process.
+     * of two pairs or also on a master surface. Collective: this process's
+     * multipliers; the reason found first in rank order on every process.
      */
     std::vector<std::pair<dealii::types::global_dof_index,
                           std::vector<dealii::types::global_dof_index>>>

@@ -207,11 +207,15 @@ namespace glide
     }
 
     /// Add the normal force @p lambda of constraint @p i to the nodal
-    /// forces @p nodal (surface to surface: shared over its region).
+    /// forces @p nodal of this process's slave nodes (surface to surface:
+    /// shared over its region). Under MPI the shares of slave nodes of
+    /// other processes go to @p elsewhere, keyed by the node's x DoF.
     virtual void
     distribute(const unsigned int   i,
                const double         lambda,
-               std::vector<double> &nodal) const;
+               std::vector<double> &nodal,
+               std::vector<std::pair<dealii::types::global_dof_index, double>>
+                 &elsewhere) const;
 
     /// After a converged step from load factor @p t_old to @p t_new, with
     /// the constraints @p s and the closed flags @p closed at the converged

@@ -74,7 +74,15 @@ namespace glide
     void
     distribute(const unsigned int   i,
                const double         lambda,
-               std::vector<double> &nodal) const override;
+               std::vector<double> &nodal,
+               std::vector<std::pair<dealii::types::global_dof_index, double>>
+                 &elsewhere) const override;
+
+    /// Also the DoFs of the slave nodes of other processes in this
+    /// process's averaging regions.
+    void
+    read_dofs(
+      std::vector<dealii::types::global_dof_index> &dofs) const override;
 
     void
     commit_step(const VectorType                   &U,
@@ -110,7 +118,26 @@ namespace glide
     void
     setup_surface_to_surface();
 
-    const bool surface_to_surface;
+    /// Surface to surface under MPI: a slave node of another process in
+    /// an averaging region (region index nodes.size() + k is
+    /// neighbours[k]).
+    struct Neighbour
+    {
+      dealii::Point<dim>                               X;
+      std::array<dealii::types::global_dof_index, dim> dofs;
+    };
+
+    /// Reference position and DoFs of region node @p k.
+    const dealii::Point<dim> &
+    region_X(const unsigned int k) const;
+    const std::array<dealii::types::global_dof_index, dim> &
+    region_dofs(const unsigned int k) const;
+    /// Current position of region node @p k.
+    dealii::Point<dim>
+    region_position(const unsigned int k, const VectorType &U) const;
+
+    const bool             surface_to_surface;
+    std::vector<Neighbour> neighbours;
     /// The anchors and tangent planes, per node (for analytical rigid
     /// masters only X0 and N0 are used).
     std::unique_ptr<SmallSliding<dim>>              planes;

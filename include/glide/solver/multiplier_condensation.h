@@ -41,8 +41,13 @@ namespace glide
    * into the same frames. After the solve, du is rotated back and dl
    * recovered from the rows above.
    *
-   * One process: the fill of a master row needs the rows of the slave
-   * nodes it is coupled to (issue 15 extends this).
+   * Under MPI (issue 15) each process condenses its own rows. Every
+   * process holds the list of all blocks and, at each condense(), the
+   * state of every block (closed, b_j, frame, scale: O(slave nodes) per
+   * process, like the gathered master surface); the fill of a master row
+   * needs the rows of the slave nodes it is coupled to, which are imported
+   * from their owners (Epetra_Import) when they are on another process.
+   * A slave node's DoFs and its multiplier must be owned by one process.
    */
   class MultiplierCondensation
   {
@@ -54,9 +59,10 @@ namespace glide
       std::vector<dealii::types::global_dof_index> dofs;
     };
 
-    /// @p blocks: every multiplier (numbered from @p n_displacements on,
-    /// contiguously) with its slave node's DoFs, which no other block
-    /// shares and no multiplier other than its own reaches.
+    /// @p blocks: this process's multipliers (numbered from
+    /// @p n_displacements on, contiguously over the processes in rank
+    /// order) with their slave nodes' DoFs, which no other block shares
+    /// and no multiplier other than its own reaches. Collective.
     MultiplierCondensation(
       std::vector<Block>                    blocks,
       const dealii::types::global_dof_index n_displacements,
@@ -68,6 +74,7 @@ namespace glide
     /// Build the condensed matrix of the full Jacobian @p J (its closed
     /// multipliers are those with a zero diagonal entry), and keep what
     /// condense_rhs() and expand() need of J: J may be released after.
+    /// Collective; an error on one process is thrown on every process.
     void
     condense(const dealii::TrilinosWrappers::SparseMatrix &J);
 
@@ -103,7 +110,8 @@ namespace glide
       return owned_displacements;
     }
 
-    /// Closed multipliers at the last condense().
+    /// Closed multipliers at the last condense(), on all processes
+    /// (collective).
     unsigned int
     n_closed() const;
 
@@ -123,6 +131,29 @@ namespace glide
       double scale = 1.;
     };
 
+    /// The local view of row @p row of J, or of the rows imported from
+    /// other processes: @p n entries, @p values, local column indices
+    /// @p idx into @p columns.
+    void
+    row_view(const dealii::types::global_dof_index row,
+             int                                  &n,
+             double                              *&values,
+             int                                 *&idx,
+             const Epetra_BlockMap               *&columns) const;
+
+    /// The state of block @p j (this process's) from the rows of J.
+    void
+    compute_state(const unsigned int j);
+
+    /// Every process's states to every process.
+    void
+    share_states();
+
+    /// The rows of other processes' closed slave nodes whose multipliers
+    /// reach this process's rows, into @p remote.
+    void
+    import_rows();
+
     /// The entries of row @p row of J (global column indices).
     void
     row_of_j(const dealii::types::global_dof_index         row,
@@ -136,11 +167,19 @@ namespace glide
     void
     condensed_row(const dealii::types::global_dof_index row, Add &&add) const;
 
-    std::vector<Block>                            blocks;
-    const dealii::types::global_dof_index         n_u;
-    const dealii::IndexSet                        owned;
-    dealii::IndexSet                              owned_displacements;
-    MPI_Comm                                      comm;
+    std::vector<Block>                    blocks;
+    const dealii::types::global_dof_index n_u;
+    const dealii::IndexSet                owned;
+    dealii::IndexSet                      owned_displacements;
+    MPI_Comm                              comm;
+    const bool                            parallel;
+    /// Every process's blocks; this process's are [first_own, end_own).
+    unsigned int first_own = 0, end_own = 0;
+    /// Under MPI, during condense(): rows of other processes' slave nodes.
+    std::unique_ptr<Epetra_CrsMatrix> remote;
+    /// Under MPI: the entries of other processes that condense_rhs() reads
+    /// of the right-hand side and expand() of the condensed solution.
+    dealii::IndexSet                              rhs_ghosts, solution_ghosts;
     const dealii::TrilinosWrappers::SparseMatrix *J = nullptr;
     std::vector<State>                            states;
     /// For each displacement DoF: its block (-1: none) and its component.
