@@ -32,7 +32,7 @@ def close(a, b, rel, what):
     check(abs(a - b) <= rel * max(abs(b), 1e-300), f"{what}: {a:.10g} vs {b:.10g} (rel. tol. {rel})")
 
 
-def run(scene, *sets, name=None, expect_status=0, mpi=False, output=None):
+def run(scene, *sets, name=None, expect_status=0, mpi=False, output=None, timeout=600):
     """Run glide; return (statistics rows, log text, output directory)."""
     output = output or tempfile.mkdtemp(prefix="glide-scene-")
     name = name or os.path.splitext(os.path.basename(scene))[0]
@@ -41,7 +41,10 @@ def run(scene, *sets, name=None, expect_status=0, mpi=False, output=None):
         cmd += ["--set", s]
     if mpi:
         cmd = ARGS.mpirun.split() + cmd
-    p = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+    try:
+        p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        sys.exit(f"glide did not end within {timeout} s (a hang?): {' '.join(cmd)}")
     log = p.stdout + p.stderr
     if p.returncode != expect_status:
         print(log)
@@ -696,9 +699,11 @@ def case_contact_amg_mpi_matches_serial():
     facets must lie on several processes: master rows then hold
     multipliers of slave nodes of another process, whose rows are imported
     for the fill (without them the condensation stops with an error or
-    solves another system, and the Newton iterations change). Scenes: the 3D Hertz quarter model on the small
-    uniform block of case_contact_amg_matches_direct (mortar and node to
-    surface) and the shipped 2D mortar scene."""
+    solves another system, and the Newton iterations change). Scenes: the
+    3D Hertz quarter model on the small uniform block of
+    case_contact_amg_matches_direct (mortar and node to surface), the
+    shipped 2D mortar scene, and a larger 3D mortar scene on 2 processes
+    that once hung (below)."""
     block = ["Body block/Block/Lower corner=0, -0.5, 0", "Body block/Block/Upper corner=0.5, 0, 0.5",
              "Body block/Block/Subdivisions=16, 8, 16", "Body block/Refinement/Local refinements=0"]
     cases = [("mortar 3D", "hertz-3d-elastic.prm", block + ["Contact pair hertz/Formulation=mortar"]),
@@ -719,6 +724,26 @@ def case_contact_amg_mpi_matches_serial():
               f"({split.group(0) if split else 'no'})")
         print(f"measured: {label}: GMRES iterations per step {[int(r['linear_iterations']) for r in parallel]}")
         compare_with_serial(label, serial, parallel, s_out, p_out, "hertz", rel=1e-7)
+    # On 2 processes, 76 000 DoFs (a uniform block of 28^3 cells; the
+    # scene where a hang was found): the condensed right-hand side was
+    # written by insertion on one process and by insertion and addition on
+    # the other, which Epetra assembles differently on each, and the first
+    # linear solve waited forever (the run ends in 13 s; a hang ends the
+    # test after 240 s). Against the serial run with AMG.
+    sets = ["Body block/Block/Lower corner=0, -1, 0", "Body block/Block/Upper corner=1, 0, 1",
+            "Body block/Block/Subdivisions=28, 28, 28", "Body block/Refinement/Local refinements=0",
+            "Body sphere/Refinement/Minimum refinement radius=0.25", "Output/Write VTU=false",
+            "Load stepping/Number of steps=1", "Contact pair hertz/Formulation=mortar", "Linear solver/Type=amg"]
+    serial, _, s_out = run(scene_file("hertz-3d-elastic.prm"), *sets, name="n28-serial")
+    saved = ARGS.mpirun
+    ARGS.mpirun = re.sub(r"-np \d+", "-np 2", saved)
+    try:
+        parallel, log, p_out = run(scene_file("hertz-3d-elastic.prm"), *sets, name="n28-mpi", mpi=True,
+                                   timeout=240)
+    finally:
+        ARGS.mpirun = saved
+    check("on 2 process(es)" in log, "28^3 block: ran on two processes")
+    compare_with_serial("mortar 3D, 28^3 block, 2 processes", serial, parallel, s_out, p_out, "hertz", rel=1e-7)
 
 
 def case_contact_deformable_mpi_matches_serial():
