@@ -119,30 +119,31 @@ namespace glide
     end_own = first_own + n_own;
     block_of.assign(n_u, -1);
     component_of.assign(n_u, 0);
-    for (unsigned int j = 0; j < blocks.size(); ++j)
+    // Checks of the caller's numbering; one process's failure is thrown on
+    // every process (the Epetra map below is collective).
+    std::string failure;
+    for (unsigned int j = 0; j < blocks.size() && failure.empty(); ++j)
       {
         if (blocks[j].multiplier != n_u + j)
-          throw std::logic_error(
-            "MultiplierCondensation: multipliers must be numbered in the "
-            "order of the blocks, from the first one after the "
-            "displacements on");
+          failure = "MultiplierCondensation: multipliers must be numbered "
+                    "in the order of the blocks, from the first one after "
+                    "the displacements on";
         for (unsigned int l = 0; l < blocks[j].dofs.size(); ++l)
           {
             const auto d = blocks[j].dofs[l];
             if (block_of[d] != -1)
-              throw std::logic_error(
-                "MultiplierCondensation: a DoF in two blocks");
+              failure = "MultiplierCondensation: a DoF in two blocks";
             block_of[d]     = j;
             component_of[d] = l;
             // A node's DoFs are owned with its multiplier (one process
             // owns all DoFs of a vertex, and the multiplier is numbered by
             // the process that owns the slave node).
             if (owned.is_element(d) != (j >= first_own && j < end_own))
-              throw std::logic_error("MultiplierCondensation: a slave "
-                                     "node's DoFs and its multiplier are "
-                                     "owned by different processes");
+              failure = "MultiplierCondensation: a slave node's DoFs and "
+                        "its multiplier are owned by different processes";
           }
       }
+    throw_first_failure<std::logic_error>(failure, comm);
     states.resize(blocks.size());
     map = std::make_unique<Epetra_Map>(
       owned_displacements.make_trilinos_map(comm, false));

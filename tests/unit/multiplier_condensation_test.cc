@@ -254,3 +254,22 @@ TEST(MultiplierCondensation, AllOpen)
   check(make_system(2, {false, false}, 2, 5));
   check(make_system(3, {false, false, false}, 3, 6));
 }
+
+// The caller's numbering is checked (on every process at once under MPI):
+// multipliers out of the blocks' order, a DoF in two blocks.
+TEST(MultiplierCondensation, RejectsInconsistentBlocks)
+{
+  const System s       = make_system(2, {true, false}, 2, 7);
+  auto         swapped = s.blocks;
+  std::swap(swapped[0].multiplier, swapped[1].multiplier);
+  EXPECT_THROW(MultiplierCondensation(
+                 swapped, s.n_u, complete_index_set(s.n), MPI_COMM_WORLD),
+               std::logic_error);
+  auto shared       = s.blocks;
+  shared[1].dofs[0] = shared[0].dofs[0];
+  EXPECT_THROW(MultiplierCondensation(
+                 shared, s.n_u, complete_index_set(s.n), MPI_COMM_WORLD),
+               std::logic_error);
+  EXPECT_NO_THROW(MultiplierCondensation(
+    s.blocks, s.n_u, complete_index_set(s.n), MPI_COMM_WORLD));
+}
