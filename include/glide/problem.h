@@ -103,13 +103,16 @@ namespace glide
     Elasticity<dim> elasticity;
     Contact<dim>    contact;
     /// The Jacobian outlives the linear solver: Amesos keeps a pointer.
-    MatrixType                          jacobian;
-    LinearSolver                        linear_solver;
-    std::vector<VectorType>             modes;
-    NonlinearSolver::Callbacks          callbacks;
-    std::unique_ptr<NonlinearSolver>    newton, damped;
-    VectorType                          residual_scale, solution_scale;
-    ActiveSetMonitor<dim>               monitor;
+    MatrixType                       jacobian;
+    LinearSolver                     linear_solver;
+    std::vector<VectorType>          modes;
+    NonlinearSolver::Callbacks       callbacks;
+    std::unique_ptr<NonlinearSolver> newton, damped;
+    VectorType                       residual_scale, solution_scale;
+    ActiveSetMonitor<dim>            monitor;
+    /// Scaled residuals of the running solve: at its first iterate and at
+    /// the last one reported (the Jacobian stabilization's scale).
+    double                              first_residual = 0., last_residual = 0.;
     std::string                         directory;
     std::unique_ptr<OutputDirectory>    output;
     std::unique_ptr<Statistics>         statistics;

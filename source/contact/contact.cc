@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <set>
 #include <sstream>
 
@@ -256,6 +257,30 @@ namespace glide
         double slave_modulus = 0.;
         pair.nodes   = find_slave_nodes(p, path, node_based, slave_modulus);
         pair.modulus = std::min(slave_modulus, master_modulus);
+        // A slave much stiffer than its deformable master: the usual
+        // advice (the softer body is the slave) exists because the master's
+        // nodes are not constrained, and a soft master passes through a
+        // stiff slave between its constraints.
+        const double slave_max = Utilities::MPI::max(slave_modulus, comm);
+        if (std::isfinite(master_modulus) &&
+            slave_max >= stiff_slave_ratio * master_modulus &&
+            Utilities::MPI::this_mpi_process(comm) == 0)
+          {
+            std::ostringstream text;
+            text << "warning: contact pair '" << p.name
+                 << "': the slave surface '" << p.slave << "' (Young's modulus "
+                 << slave_max << ") is " << std::setprecision(2)
+                 << slave_max / master_modulus
+                 << " times stiffer than the master surface '" << p.master
+                 << "' (" << master_modulus
+                 << "). A soft master passes through a stiff slave between "
+                    "its constrained points: the contact pressure "
+                    "concentrates at the slave's nodes and Newton's active "
+                    "set may cycle (more so where the slave's mesh is the "
+                    "finer). Make the softer body the slave (swap 'Slave' "
+                    "and 'Master').";
+            messages.push_back(text.str());
+          }
         if (!std::isfinite(pair.modulus))
           pair.modulus = max_youngs_modulus;
         for (auto &node : pair.nodes)
@@ -662,11 +687,11 @@ namespace glide
     const Constraint<dim>                         &s,
     const typename ContactEnforcement<dim>::Force &f) const
   {
-    if (!stabilize || f.closed || !s.found() || !(s.gap >= 0.) ||
+    if (!(stabilize > 0.) || f.closed || !s.found() || !(s.gap >= 0.) ||
         s.gap >= node.size)
       return 0.;
     const double w = 1. - s.gap / node.size;
-    return stabilization * node.c * w * w;
+    return stabilize * stabilization * node.c * w * w;
   }
 
   template <int dim>
@@ -946,11 +971,12 @@ namespace glide
                        "infinitesimal sliding (small sliding in a "
                        "geometrically linear scene: planes and load-transfer "
                        "weights fixed)");
-        e.push_back("contact pair " + p.name + " (" + name + ", " + p.master +
-                    ", " + pair.enforcement->name() + ", " +
+        e.push_back("contact pair " + p.name + " (" + name + ", slave " +
+                    p.slave + " with " +
                     std::to_string(Utilities::MPI::sum(
                       static_cast<unsigned int>(pair.nodes.size()), comm)) +
-                    " slave nodes)");
+                    " nodes, master " + p.master + ", " +
+                    pair.enforcement->name() + ")");
       }
     return e;
   }

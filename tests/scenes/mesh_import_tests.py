@@ -36,7 +36,7 @@ def case_abaqus_two_bodies_contact():
     ref, _, _ = st.run(os.path.join(SCENES, "block-on-block-builtin.prm"), "Output/Write VTU=false")
     check("lower.MASTER" in log and "upper.SLAVE" in log, "the log lists the surfaces of the file by name")
     check("upper.LOADED" in log and "lower.FIXED" in log, "the log lists the node sets of the file")
-    check("5 slave nodes" in log, "5 slave nodes on SLAVE")
+    check("slave upper.SLAVE with 5 nodes" in log, "5 slave nodes on SLAVE")
     check(len(inp) == 2 and len(ref) == 2, "both runs finish their 2 steps")
     for a, b in zip(inp, ref):
         t = a["load_factor"]
@@ -50,7 +50,8 @@ def case_abaqus_two_bodies_contact():
         check(a["contact_interface_active"] == b["contact_interface_active"], f"same active set at t={t}")
     nodes, log, _ = st.run(os.path.join(SCENES, "block-on-block-inp.prm"), "Output/Write VTU=false",
                            "Contact pair interface/Slave=upper.SLAVE_NODES", name="node-based")
-    check("5 slave nodes" in log, "5 slave nodes on the node-based surface SLAVE_NODES (none of the lower body)")
+    check("slave upper.SLAVE_NODES with 5 nodes" in log,
+          "5 slave nodes on the node-based surface SLAVE_NODES (none of the lower body)")
     for a, b in zip(nodes, inp):
         close(a["reaction_hold_y"], b["reaction_hold_y"], 1e-8,
               f"node-based slave surface: same reaction at t={a['load_factor']}")

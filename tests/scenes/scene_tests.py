@@ -469,7 +469,7 @@ def case_node_based_slave():
     points = "; ".join(f"{-2 + i / 16:.10g}, 0" for i in range(65))
     nodes, log, out = run(punch, "Output/Write VTU=false", "Node sets=top", f"Node set top/Points={points}",
                           "Contact pair punch/Slave=top", name="nodes")
-    check("65 slave nodes" in log, "65 slave nodes from the node set")
+    check("slave top with 65 nodes" in log, "65 slave nodes from the node set")
     for a, b in zip(surface, nodes):
         close(b["contact_punch_force_y"], a["contact_punch_force_y"], 1e-8, f"same force at t={a['load_factor']}")
         check(a["contact_punch_active"] == b["contact_punch_active"], f"same active set size at t={a['load_factor']}")
@@ -1450,21 +1450,19 @@ def robustness_cases():
 # take. Every other cell must meet the targets.
 ROBUSTNESS_EXCEPTIONS = {
     # A slave 1e6 times stiffer than its master (the role assignment the
-    # usual advice warns against): the soft master wraps around the coarse
-    # slave nodes (node to surface lets it), and the open/closed state of
-    # the slave nodes at the edge keeps changing. Measured at level 1
-    # (2026-12-03): 3, 14, 2, 14 (f = 0.2) and 3, 13, 2, 13 (small
-    # sliding); the peak pressure is 1.75-1.77 times Hertz's.
+    # usual advice warns against, and glide's set-up warning too): the
+    # master's nodes are not constrained, and the soft master passes
+    # through the stiff slave between its constrained nodes. In these
+    # meshes the cylinder's surface is also 2.5 times finer than the
+    # block's at the contact, more slave constraints than the master's
+    # nodes can follow: the converged active sets are not contiguous, and
+    # the nodes at their edges switch back and forth (level 1, 2026-12-04:
+    # 3, 14, 3, 14 with f = 0.2, 3, 13, 2, 10 with small sliding; p0 1.75
+    # to 1.77 times Hertz's). With the block refined until its surface is
+    # finer than the cylinder's, the same cell takes 4, 3, 4, 4 at level 2
+    # (doc/theory/nonlinear-solution.md).
     ("nts-finite-f0.2", "ratio 1e6, stiff slave"),
     ("nts-small", "ratio 1e6, stiff slave"),
-    # Surface to surface: the first step (force-driven from one touching
-    # node) takes 17 iterations at level 1 with the block as slave (the
-    # later ones 2-3): its averaging regions close and open together at
-    # the contact edge, a singular Jacobian ends the full-Newton attempt
-    # and the line-search retry finishes. With the stiff cylinder as
-    # slave: 3, 11, 2, 12 at level 1. Measured 2026-12-03; the other two
-    # cells of surface to surface meet the targets.
-    ("sts-small", "ratio 3, block slave"),
     ("sts-small", "ratio 1e6, stiff slave"),
 }
 
@@ -1516,12 +1514,22 @@ def robustness_matrix_of(formulations):
                 its = r["iterations"]
                 what = f"{formulation}, {label}, level {level}"
                 check(r["converged"], f"{what}: converged")
+                check(("times stiffer than the master surface" in r["log"]) == ("stiff slave" in label),
+                      f"{what}: the set-up warns about a much stiffer slave, and only then")
                 if not r["converged"]:
                     print(r["log"][-3000:])
                     continue
                 print(f"measured: {what}: iterations {its}, cut-backs {r['cut_backs']}, "
                       f"p0_h/p0 {r['p0_h'] / r['p0']:.4f}")
-                close(abs(r["force"]), r["P"], 1e-8, f"{what}: contact force = P")
+                # Equilibrium to the Newton tolerance: a scaled residual of
+                # 1e-10 is a force of 1e-10 E_min A_ref (about 1e-5 N here)
+                # per DoF, and the cylinder's balance sums its DoFs'. Since
+                # the Jacobian stabilization stays on (scaled) once the
+                # active set has settled, the last Newton step of these
+                # nearly linear problems ends at the tolerance rather than
+                # at round-off: measured |F - P| / P up to 3.3e-8 (before:
+                # within 1e-8; doc/theory/nonlinear-solution.md).
+                close(abs(r["force"]), r["P"], 1e-6, f"{what}: contact force = P")
                 if (formulation, label) in ROBUSTNESS_EXCEPTIONS:
                     continue
                 check(r["cut_backs"] == 0, f"{what}: no cut-back")
@@ -1569,8 +1577,9 @@ def case_robustness_faceted():
       issue's targets (no cut-back, at most 10 iterations per step, mean at
       most 6; measured 4 / 3.5), force = P, peak pressure within 3 % of
       Hertz's. Levels 0 and 1 (3 and 5 slave nodes in the contact zone)
-      are printed, not checked: level 0 converges with 2 cut-backs (18 /
-      9.5 iterations), level 1 does not converge. The cylinder, held in x
+      are printed, not checked: level 0 converges without cut-back but
+      above the targets (22, 9, 12, 8 iterations; 2026-12-04), level 1
+      does not converge. The cylinder, held in x
       at its top only, rolls on its small contact zone with almost no
       stiffness, and the facets' normals, not symmetric about the first
       contact point, push it to roll until slave nodes pass vertices; a

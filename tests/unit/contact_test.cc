@@ -328,7 +328,8 @@ TEST(Contact, StabilizationOnlyInTheJacobianOfOpenNodesNearTheMaster)
   // one facet of a flat rigid master, the Jacobian gains a positive
   // semidefinite term s_J c (1 - g/h)^2 n n^T on the slave rows, and the
   // residual is unchanged (it is zero: open nodes carry no force); with
-  // the master farther than a facet away, nothing is added.
+  // the master farther than a facet away, nothing is added. Scaled by the
+  // factor of set_jacobian_stabilization().
   for (const double height : {1.1, 2.0})
     {
       std::string        text = contact_scene(false, "rigid plane", "hard");
@@ -338,15 +339,24 @@ TEST(Contact, StabilizationOnlyInTheJacobianOfOpenNodesNearTheMaster)
       text.replace(text.find("0.1, -1\n"), 8, "0, -1\n");
       glide_test::ContactFixture<2> s(text, "stabilization.prm");
       VectorType U(s.e.locally_owned(), MPI_COMM_WORLD), F(U), Fon(U);
-      MatrixType on, off;
+      MatrixType on, off, scaled;
       on.reinit(s.e.matrix_pattern());
       off.reinit(s.e.matrix_pattern());
+      scaled.reinit(s.e.matrix_pattern());
       s.contact.assemble(U, &Fon, &on);
       s.contact.set_jacobian_stabilization(false);
       s.contact.assemble(U, &F, &off);
+      // The driver's scaled springs (once the active set has settled):
+      // the added term is proportional to the factor.
+      s.contact.set_jacobian_stabilization(0.25);
+      s.contact.assemble(U, nullptr, &scaled);
       EXPECT_EQ(Fon.linfty_norm(), 0.);
       EXPECT_EQ(F.linfty_norm(), 0.);
       on.add(-1., off);
+      scaled.add(-1., off);
+      scaled.add(-0.25, on);
+      EXPECT_LE(scaled.frobenius_norm(), 1e-12 * on.frobenius_norm())
+        << "master at " << height;
       // v = a uniform motion: v^T (J_on - J_off) v > 0 near the master.
       VectorType v(U), Dv(U);
       for (const auto i : s.e.displacement_owned())
@@ -476,7 +486,12 @@ TEST(Contact, FormulationsAreChosenByName)
       EXPECT_NE(effects[0].find("(" + name), std::string::npos) << effects[0];
       const std::string enforcement =
         pair.find("penalty") != std::string::npos ? "penalty" : "hard";
-      EXPECT_NE(effects[0].find(", " + enforcement + ", "), std::string::npos)
+      // The roles are named as such (the master's name alone, where the
+      // slave's belonged, read as if it were the slave).
+      EXPECT_NE(effects[0].find(", slave upper.bottom with 4 nodes, master "
+                                "lower.top, " +
+                                enforcement + ")"),
+                std::string::npos)
         << effects[0];
     }
 }
