@@ -1457,7 +1457,7 @@ ROBUSTNESS_EXCEPTIONS = {
     # block's at the contact, more slave constraints than the master's
     # nodes can follow: the converged active sets are not contiguous, and
     # the nodes at their edges switch back and forth (level 1, 2026-12-04:
-    # 3, 14, 3, 14 with f = 0.2, 3, 13, 2, 10 with small sliding; p0 1.75
+    # 3, 14, 3, 14 with f = 0.2, 3, 13, 2, 11 with small sliding; p0 1.75
     # to 1.77 times Hertz's). With the block refined until its surface is
     # finer than the cylinder's, the same cell takes 4, 3, 4, 4 at level 2
     # (doc/theory/nonlinear-solution.md).
