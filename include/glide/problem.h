@@ -112,7 +112,8 @@ namespace glide
     ActiveSetMonitor<dim>            monitor;
     /// Scaled residuals of the running solve: at its first iterate and at
     /// the last one reported (the Jacobian stabilization's scale).
-    double                              first_residual = 0., last_residual = 0.;
+    double                              first_residual = 0.;
+    double                              last_residual  = 0.;
     std::string                         directory;
     std::unique_ptr<OutputDirectory>    output;
     std::unique_ptr<Statistics>         statistics;

@@ -304,14 +304,13 @@ namespace glide
      * Newton step is inexact only in the rows of open nodes near the
      * master. The driver applies it in full while the active set changes
      * and, once it has settled, scaled by the square of the residual's
-     * reduction in the solve (set_jacobian_stabilization()): the
-     * Jacobian's error then shrinks faster than the residual and the last
-     * iterations converge
-     * quadratically (with it always in full, the error shrank by only
-     * about 1/500 per iteration at the end), and a rigid motion that only
-     * the springs resist never leaves the Jacobian singular (switched off,
-     * it did: a cylinder touching a block at one node turned by an
-     * arbitrary angle in the next step).
+     * reduction in the solve (set_jacobian_stabilization()). The
+     * Jacobian's error then shrinks faster than the residual, and the last
+     * iterations converge quadratically (with it always in full, the error
+     * shrank by only about 1/500 per iteration at the end). A rigid motion
+     * that only the springs resist never leaves the Jacobian singular
+     * (switched off, it did: a cylinder touching a block at one node
+     * turned by an arbitrary angle in the next step).
      */
     double
     stabilization_weight(
