@@ -200,6 +200,25 @@ def zigzag(nodes, a, slave_x="x"):
     return worst
 
 
+def bend_zigzag(nodes, a, p0):
+    """The zigzag of tests/studies/hertz_study.py: the largest deviation of
+    a nodal pressure from the straight line through its neighbours, less
+    that of the Hertz profile (whose curvature alone gives such a deviation
+    on coarse meshes), over p0, in the central half |x| <= a / 2; NaN with
+    fewer than 3 nodes there."""
+    pts = sorted((float(n["x"]), float(n["CPRESS"])) for n in nodes)
+    exact = lambda x: p0 * math.sqrt(max(0.0, 1 - (x / a) ** 2))
+    bend = lambda x0, x1, x2, q0, q1, q2: q1 - (q0 + (q2 - q0) * (x1 - x0) / (x2 - x0))
+    if sum(1 for x, _ in pts if abs(x) <= 0.5 * a) < 3:
+        return float("nan")
+    worst = 0.0
+    for (x0, q0), (x1, q1), (x2, q2) in zip(pts, pts[1:], pts[2:]):
+        if abs(x1) <= 0.5 * a:
+            d = bend(x0, x1, x2, q0, q1, q2) - bend(x0, x1, x2, exact(x0), exact(x1), exact(x2))
+            worst = max(worst, abs(d) / p0)
+    return worst
+
+
 def last_contact_csv(directory, pair):
     if not os.path.isdir(directory):
         return None
@@ -216,14 +235,18 @@ def main():
     parser.add_argument("--output", default=tempfile.mkdtemp(prefix="glide-robustness-"))
     parser.add_argument("--zigzag-levels", default="0,1,2,3",
                         help="levels of the two-materials Hertz study of the nodal pressure zigzag")
-    parser.add_argument("--part", choices=("all", "zigzag", "matrix"), default="all",
-                        help="run only the zigzag study or only the robustness matrix")
+    parser.add_argument("--mesh-levels", default="1,2", help="levels of the facet-size study")
+    parser.add_argument("--part", choices=("all", "zigzag", "matrix", "meshes"), default="all",
+                        help="run only the zigzag study, only the robustness matrix, or only the "
+                             "study of quadratic elements against the slave and master facet sizes")
     args = parser.parse_args()
     levels = [int(x) for x in args.levels.split(",")]
     if args.part in ("all", "zigzag"):
         zigzag_study(args)
     if args.part in ("all", "matrix"):
         matrix_study(args, levels)
+    if args.part in ("all", "meshes"):
+        mesh_study(args)
 
 
 def zigzag_study(args):
@@ -248,6 +271,50 @@ def zigzag_study(args):
                 print(f"| {degree} | {f} | {level} | {inside} | {r['p0_h'] / r['p0']:.4f} | "
                       f"{100 * zigzag(r['nodes'], r['a']):.1f} % | {max(r['iterations'])} / "
                       f"{sum(r['iterations']) / len(r['iterations']):.1f} | {r['wall']:.1f} |", flush=True)
+
+
+# The meshes of the facet-size study: label, keyword arguments of
+# scene_text, and (body, extra local refinements). In the robustness
+# matrix's meshes the block's facets at the contact are 2.5 times as long
+# as the cylinder's; each extra refinement of the block halves them.
+MESHES = [("block slave, block facets 2.5 times longer", dict(slave="block"), ()),
+          ("block slave, block facets 1.25 times longer", dict(slave="block"), ("block", 1)),
+          ("block slave, block facets 1.6 times shorter", dict(slave="block"), ("block", 2)),
+          ("cylinder slave, cylinder facets 2.5 times shorter", dict(slave="cylinder"), ()),
+          ("cylinder slave, cylinder facets 1.6 times longer", dict(slave="cylinder"), ("block", 2)),
+          ("block slave, cylinder 100 times stiffer", dict(slave="block", ratio=100.0), ()),
+          ("block slave, cylinder 1e6 times stiffer", dict(slave="block", ratio=1e6), ())]
+
+
+def mesh_study(args):
+    """Node to surface with quadratic elements between two deformable
+    bodies (issue 12, item 4): the peak pressure and the zigzag against the
+    ratio of the slave's and the master's facet lengths at the contact, and
+    against a nearly rigid master; degree 1 and mortar on the same meshes."""
+    print("\n### Quadratic elements: slave and master facet sizes\n")
+    print("| formulation | degree | meshes | level | p0_h/p0 | zigzag | beyond Hertz | iterations max / mean | "
+          "cut-backs | time (s) |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    levels = [int(x) for x in args.mesh_levels.split(",")]
+    for formulation, degree in (("nts-finite-f0.2", 2), ("nts-finite-f0.2", 1), ("nts-small", 2),
+                                ("sts-small", 2), ("mortar", 2)):
+        for label, kw, refine in MESHES:
+            for level in levels:
+                extra = []
+                if refine:
+                    extra.append(f"Body {refine[0]}/Refinement/Local refinements={3 + level + refine[1]}")
+                name = f"meshes-{formulation}-q{degree}-{re.sub('[^a-z0-9]+', '-', label)}-{level}"
+                r = run_case(args.glide, args.output, name, extra=extra, formulation=formulation,
+                             level=level, degree=degree, **kw)
+                if "nodes" not in r:
+                    print(f"| {formulation} | {degree} | {label} | {level} | did not converge | - | - | - | - | "
+                          f"{r['wall']:.1f} |", flush=True)
+                    continue
+                its = r["iterations"]
+                print(f"| {formulation} | {degree} | {label} | {level} | {r['p0_h'] / r['p0']:.4f} | "
+                      f"{100 * zigzag(r['nodes'], r['a']):.1f} % | "
+                      f"{100 * bend_zigzag(r['nodes'], r['a'], r['p0']):.1f} % | {max(its)} / {sum(its) / len(its):.1f} | "
+                      f"{r['cut_backs']} | {r['wall']:.1f} |", flush=True)
 
 
 def matrix_study(args, levels):

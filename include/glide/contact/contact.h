@@ -326,7 +326,10 @@ namespace glide
     /// Slave modulus over master modulus from which the set-up warns that
     /// the roles should be swapped.
     static constexpr double stiff_slave_ratio = 10.;
-    double                  stabilize         = 1.;
+    /// Master modulus over slave modulus below which node to surface with
+    /// quadratic elements warns that its nodal pressure zigzags.
+    static constexpr double quadratic_master_ratio = 100.;
+    double                  stabilize              = 1.;
 
     const Scene           &scene;
     const Elasticity<dim> &elasticity;
