@@ -346,10 +346,12 @@ namespace glide
         // deformable bodies"). A master 100 times stiffer than the slave
         // hardly deforms under the slave nodes' point forces (1e6 times:
         // p0 within 0.1 % of Hertz's).
-        if (const auto *s = pairs.back().formulation->master_surface();
-            s != nullptr && s->degree() == 2 &&
-            master_modulus < quadratic_master_ratio * slave_max &&
-            p.formulation != "mortar" &&
+        pairs.back().compliant_master =
+          pairs.back().formulation->master_surface() != nullptr &&
+          master_modulus < quadratic_master_ratio * slave_max &&
+          p.formulation != "mortar";
+        if (pairs.back().compliant_master &&
+            pairs.back().formulation->master_surface()->degree() == 2 &&
             Utilities::MPI::this_mpi_process(comm) == 0)
           messages.push_back(
             "warning: contact pair '" + p.name + "': '" + p.formulation +
@@ -838,8 +840,62 @@ namespace glide
         std::vector<bool> closed;
         for (const auto &x : f)
           closed.push_back(x.closed);
+        finer_master_facets(pair, s, closed);
         pair.formulation->commit_step(U, s, closed, t_old, t_new);
       }
+  }
+
+  template <int dim>
+  void
+  Contact<dim>::finer_master_facets(Pair                               &pair,
+                                    const std::vector<Constraint<dim>> &s,
+                                    const std::vector<bool>            &closed)
+  {
+    const auto *surface = pair.formulation->master_surface();
+    if (!pair.compliant_master || pair.finer_master_said || surface == nullptr)
+      return;
+    // Reference lengths: the meshes' own proportions, whatever the
+    // deformation.
+    std::vector<double> ratios;
+    for (unsigned int i = 0; i < s.size(); ++i)
+      if (const int f = pair.formulation->touched_facet(i, s[i]);
+          closed[i] && f >= 0)
+        {
+          const auto &facet = surface->get_facets()[f];
+          // Its diameter, as the slave nodes' sizes are their faces'.
+          const auto &nodes  = surface->get_nodes();
+          double      length = 0.;
+          for (const auto a : facet.nodes)
+            for (const auto b : facet.nodes)
+              length = std::max(length, nodes[a].X.distance(nodes[b].X));
+          if (length > 0.)
+            ratios.push_back(pair.nodes[i].size / length);
+        }
+    std::vector<double> all;
+    for (const auto &part : Utilities::MPI::all_gather(comm, ratios))
+      all.insert(all.end(), part.begin(), part.end());
+    if (all.empty())
+      return;
+    std::nth_element(all.begin(), all.begin() + all.size() / 2, all.end());
+    const double median = all[all.size() / 2];
+    if (median < finer_master_ratio)
+      return;
+    pair.finer_master_said = true;
+    if (Utilities::MPI::this_mpi_process(comm) != 0)
+      return;
+    const auto        &p = *pair.parameters;
+    std::ostringstream text;
+    text << "warning: contact pair '" << p.name
+         << "': where the slave nodes touch, the master's facets are "
+         << std::setprecision(2) << median
+         << " times shorter than the slave's (median over " << all.size()
+         << " closed nodes). Each slave node's force acts at one point of "
+            "the deformable master, which deforms unevenly under these point "
+            "forces: the nodal contact pressure (CPRESS) zigzags and its peak "
+            "is high (two-materials Hertz, doc/theory/node-to-surface.md). "
+            "Make the surface with the shorter facets the slave, or use "
+            "'Formulation = mortar'.";
+    messages.push_back(text.str());
   }
 
   template <int dim>

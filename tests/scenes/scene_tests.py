@@ -1576,18 +1576,29 @@ def case_quadratic_node_to_surface():
     zigzag beyond the Hertz profile at most 5 %. The set-up
     warns for every such pair (the mesh ratio where it touches is not known
     before the solve), and not for degree 1, mortar, or a master 100 times
-    stiffer than the slave."""
+    stiffer than the slave. For any degree, every formulation but mortar
+    warns once after a step whose closed slave nodes touch master facets
+    at least 2 times shorter than their own (median): here 2.5 with the
+    block as slave, and not with the cylinder as slave or the block
+    refined past it."""
     sys.path.insert(0, os.path.join(ROOT, "study"))
     import robustness
     output = tempfile.mkdtemp(prefix="glide-quadratic-")
     warning = "with quadratic elements between two deformable bodies"
+    # After the first converged step with closed nodes, for any degree and
+    # every formulation but mortar: the master's facets 2 or more times
+    # shorter than the slave's where they touch.
+    finer = "where the slave nodes touch, the master's facets are 2.5 times shorter than the slave's"
     finer_slave = ["Body block/Refinement/Local refinements=6"]
-    cases = [("block slave, block facets 2.5 times longer", dict(), (), True, None),
-             ("block slave, block facets 1.6 times shorter", dict(), finer_slave, True, 0.02),
-             ("cylinder 1e6 times stiffer", dict(ratio=1e6), (), False, 0.02),
-             ("degree 1", dict(degree=1), (), False, None),
-             ("mortar", dict(formulation="mortar"), (), False, None)]
-    for label, kw, extra, warns, tolerance in cases:
+    cases = [("block slave, block facets 2.5 times longer", dict(), (), True, True, None),
+             ("block slave, block facets 1.6 times shorter", dict(), finer_slave, True, False, 0.02),
+             ("cylinder 1e6 times stiffer", dict(ratio=1e6), (), False, False, 0.02),
+             ("degree 1", dict(degree=1), (), False, True, None),
+             ("degree 1, cylinder slave", dict(degree=1, slave="cylinder"), (), False, False, None),
+             ("degree 1, small-sliding surface to surface", dict(degree=1, formulation="sts-small"), (), False,
+              True, None),
+             ("mortar", dict(formulation="mortar"), (), False, False, None)]
+    for label, kw, extra, warns, warns_finer, tolerance in cases:
         args = dict(formulation="nts-finite-f0.2", level=1, degree=2, slave="block")
         args.update(kw)
         r = robustness.run_case(ARGS.glide, output, re.sub("[^a-z0-9]+", "-", label), extra=extra, **args)
@@ -1597,6 +1608,8 @@ def case_quadratic_node_to_surface():
             continue
         check((r["log"].count(warning) == 1) == warns,
               f"{label}: the set-up warning about quadratic node to surface {'once' if warns else 'absent'}")
+        check((r["log"].count(finer) == 1) == warns_finer,
+              f"{label}: the warning about shorter master facets {'once' if warns_finer else 'absent'}")
         ratio = r["p0_h"] / r["p0"]
         print(f"measured: {label}: p0_h/p0 {ratio:.4f}, zigzag {100 * robustness.zigzag(r['nodes'], r['a']):.1f} %, "
               f"iterations {r['iterations']}")

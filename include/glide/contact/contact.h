@@ -252,7 +252,13 @@ namespace glide
       /// The modulus that sets the contact stiffness of the pair: the
       /// smaller of the slave's and the master's Young's moduli (a rigid
       /// master counts as infinitely stiff), see setup().
-      double                                   modulus = 0.;
+      double modulus = 0.;
+      /// A deformable master less than quadratic_master_ratio times stiffer
+      /// than the slave: the slave nodes' point forces deform it.
+      bool compliant_master = false;
+      /// The log has said that the master's facets are the shorter where
+      /// the slave nodes touch (finer_master_facets(); once per run).
+      bool                                     finer_master_said = false;
       std::vector<SlaveNode<dim>>              nodes; ///< locally owned
       std::unique_ptr<Formulation<dim>>        formulation;
       std::unique_ptr<ContactEnforcement<dim>> enforcement;
@@ -329,7 +335,22 @@ namespace glide
     /// Master modulus over slave modulus below which node to surface with
     /// quadratic elements warns that its nodal pressure zigzags.
     static constexpr double quadratic_master_ratio = 100.;
-    double                  stabilize              = 1.;
+    /// Slave facet length over master facet length at the closed slave
+    /// nodes (median) from which finer_master_facets() warns.
+    static constexpr double finer_master_ratio = 2.;
+
+    /// After a converged step: warn (once per pair) where the closed slave
+    /// nodes of a node-to-surface pair with a compliant master touch master
+    /// facets that are finer_master_ratio or more times shorter than their
+    /// own (doc/theory/node-to-surface.md, "Quadratic elements between two
+    /// deformable bodies": the master deforms under the slave nodes' point
+    /// forces, and the nodal pressure zigzags).
+    void
+    finer_master_facets(Pair                               &pair,
+                        const std::vector<Constraint<dim>> &s,
+                        const std::vector<bool>            &closed);
+
+    double stabilize = 1.;
 
     const Scene           &scene;
     const Elasticity<dim> &elasticity;

@@ -197,6 +197,17 @@ namespace glide
     virtual unsigned int
     n_fallbacks() const;
 
+    /// The facet of master_surface() whose nodes take the force of
+    /// constraint @p s of node @p i (node to surface: the projection's;
+    /// small sliding: the anchor's), -1 where there is none.
+    virtual int
+    touched_facet(const unsigned int i, const Constraint<dim> &s) const
+    {
+      (void)i;
+      (void)s;
+      return -1;
+    }
+
     /// True if the force of constraint @p i acts on slave node i alone,
     /// with the master nodes (node to surface, mortar's dual basis): then
     /// the multipliers can be eliminated (MultiplierCondensation).

@@ -65,6 +65,15 @@ namespace glide
 
     unsigned int
     n_held() const override;
+    int
+    touched_facet(const unsigned int i, const Constraint<dim> &s) const override
+    {
+      (void)i;
+      return this->surface && s.found() && s.projection.found ?
+               static_cast<int>(
+                 this->surface->get_pieces()[s.projection.piece].facet) :
+               -1;
+    }
 
     double
     held_gap_error(const std::vector<Constraint<dim>> &s) const override;

@@ -62,6 +62,13 @@ namespace glide
 
     unsigned int
     n_fallbacks() const override;
+    int
+    touched_facet(const unsigned int i, const Constraint<dim> &s) const override
+    {
+      return s.found() && anchors[i].found ?
+               static_cast<int>(anchors[i].facet) :
+               -1;
+    }
 
     /// Surface to surface spreads the force of a constraint over the
     /// nodes of its averaging region.
