@@ -1561,7 +1561,7 @@ def robustness_matrix_of(formulations):
 
 
 def case_quadratic_node_to_surface():
-    """Issue 12, item 4: node to surface with quadratic elements between two
+    """Issue 12, item 4 (R16.2): node to surface with quadratic elements between two
     deformable bodies. Each slave node's force acts at one point of the
     master's quadratic facets; where the master's facets are as long as
     the slave's or shorter, the master deforms unevenly under those point
