@@ -538,16 +538,16 @@ namespace glide
 
   template <int dim>
   void
-  Contact<dim>::hold(const std::vector<std::pair<unsigned int, int>> &holds)
+  Contact<dim>::hold(const std::vector<Hold> &holds)
   {
-    for (const auto &[k, piece] : holds)
+    for (const auto &[k, piece, partner] : holds)
       {
         unsigned int first = 0;
         for (auto &pair : pairs)
           {
             if (k < first + pair.nodes.size())
               {
-                pair.formulation->hold(k - first, piece);
+                pair.formulation->hold(k - first, piece, partner);
                 break;
               }
             first += pair.nodes.size();

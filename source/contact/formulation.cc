@@ -82,7 +82,7 @@ namespace glide
 
   template <int dim>
   void
-  Formulation<dim>::hold(const unsigned int, const int)
+  Formulation<dim>::hold(const unsigned int, const int, const int)
   {}
 
   template <int dim>

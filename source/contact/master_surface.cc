@@ -1131,6 +1131,68 @@ namespace glide
 
   template <int dim>
   typename MasterSurface<dim>::Projection
+  MasterSurface<dim>::project_at_vertex(const unsigned int piece,
+                                        const unsigned int partner,
+                                        const Point<dim>  &xs) const
+  {
+    Projection p;
+    p.failed = true;
+    if (dim != 2 || fraction > 0. || polynomial_degree != 1 ||
+        piece >= pieces.size() || partner >= pieces.size() || piece == partner)
+      return p;
+    const auto whole = [&](const Piece &q) {
+      return q.kind == PieceKind::lagrange && q.mirror_node < 0 &&
+             facets[q.facet].nodes.size() == 2;
+    };
+    const Piece &a = pieces[piece];
+    const Piece &b = pieces[partner];
+    if (!whole(a) || !whole(b))
+      return p;
+    const auto &na = facets[a.facet].nodes;
+    const auto &nb = facets[b.facet].nodes;
+    // The shared node: the end of one facet is the start of the other
+    // (the chain's orientation), so that the normals agree in sense.
+    int          v  = -1;
+    unsigned int at = 0;
+    if (na[1] == nb[0])
+      {
+        v  = na[1];
+        at = 1;
+      }
+    else if (na[0] == nb[1])
+      {
+        v  = na[0];
+        at = 0;
+      }
+    if (v < 0)
+      return p;
+    Tensor<1, dim> m;
+    for (const auto *f : {&na, &nb})
+      {
+        const Tensor<1, dim> t = x[(*f)[1]] - x[(*f)[0]];
+        Tensor<1, dim>       n;
+        n[0] = t[1];
+        n[1] = -t[0];
+        m += n / t.norm();
+      }
+    // Facets folded back onto each other have no mean normal.
+    if (m.norm() < 1e-6)
+      return p;
+    p.found      = true;
+    p.failed     = false;
+    p.vertex     = true;
+    p.piece      = piece;
+    p.partner    = partner;
+    p.xi[0]      = at;
+    p.clamped[0] = true;
+    p.point      = x[v];
+    p.normal     = m / m.norm();
+    p.gap        = (xs - p.point) * p.normal;
+    return p;
+  }
+
+  template <int dim>
+  typename MasterSurface<dim>::Projection
   MasterSurface<dim>::project(const Point<dim> &xs,
                               const double      search_radius) const
   {
@@ -1268,6 +1330,9 @@ namespace glide
     std::vector<unsigned int> result;
     for (const auto &v : piece.vnodes)
       result.push_back(v.first);
+    if (p.partner >= 0)
+      for (const auto &v : pieces[p.partner].vnodes)
+        result.push_back(v.first);
     if (piece.mirror_node >= 0)
       result.push_back(piece.mirror_node);
     if (dim == 3 && fraction > 0.)
@@ -1327,6 +1392,11 @@ namespace glide
     const std::array<types::global_dof_index, dim> &slave_dofs,
     Linearization                                  &l) const
   {
+    if (p.partner >= 0)
+      {
+        linearize_at_vertex(p, xs, slave_dofs, l);
+        return;
+      }
     const Piece                         &piece = pieces[p.piece];
     const auto                           local = nodes_of(p);
     const unsigned int                   n     = dim * (1 + local.size());
@@ -1487,6 +1557,79 @@ namespace glide
         l.force(i) = G[i].val();
         for (unsigned int j = 0; j < n; ++j)
           l.dforce(i, j) = G[i].dx(j);
+      }
+  }
+
+  template <int dim>
+  void
+  MasterSurface<dim>::linearize_at_vertex(
+    const Projection                               &p,
+    const Point<dim>                               &xs,
+    const std::array<types::global_dof_index, dim> &slave_dofs,
+    Linearization                                  &l) const
+  {
+    // g = (x_s - x_v) . n_v, n_v = (n_a + n_b) / |n_a + n_b| over the three
+    // nodes of the two facets: dgap is its exact gradient; the force acts
+    // along n_v on the slave node and the shared node (equal and opposite,
+    // as at a held facet's end), and dforce is its derivative.
+    const auto                           local = nodes_of(p);
+    const unsigned int                   n     = dim * (1 + local.size());
+    std::map<unsigned int, unsigned int> slot;
+    std::vector<std::array<Fad, dim>>    xl(local.size());
+    for (unsigned int i = 0; i < local.size(); ++i)
+      {
+        slot[local[i]] = i;
+        for (unsigned int d = 0; d < dim; ++d)
+          xl[i][d] = Fad(n, dim * (1 + i) + d, x[local[i]][d]);
+      }
+    std::array<Fad, dim> s;
+    for (unsigned int d = 0; d < dim; ++d)
+      s[d] = Fad(n, d, xs[d]);
+    std::array<Fad, dim> m = {};
+    for (const int q : {static_cast<int>(p.piece), p.partner})
+      {
+        const auto &f  = facets[pieces[q].facet].nodes;
+        const auto &x0 = xl[slot.at(f[0])];
+        const auto &x1 = xl[slot.at(f[1])];
+        const Fad   tx = x1[0] - x0[0], ty = x1[1] - x0[1];
+        const Fad   len = sqrt(tx * tx + ty * ty);
+        m[0] += ty / len;
+        m[1] -= tx / len;
+      }
+    const Fad            mn  = sqrt(m[0] * m[0] + m[1] * m[1]);
+    std::array<Fad, dim> nrm = {{m[0] / mn, m[1] / mn}};
+    const unsigned int   v =
+      facets[pieces[p.piece].facet].nodes[static_cast<unsigned int>(p.xi[0])];
+    const auto &xv = xl[slot.at(v)];
+    Fad         g  = 0.;
+    for (unsigned int d = 0; d < dim; ++d)
+      g += (s[d] - xv[d]) * nrm[d];
+
+    l.spring.reinit(0);
+    l.dofs.resize(n);
+    for (unsigned int d = 0; d < dim; ++d)
+      l.dofs[d] = slave_dofs[d];
+    for (unsigned int i = 0; i < local.size(); ++i)
+      for (unsigned int d = 0; d < dim; ++d)
+        l.dofs[dim * (1 + i) + d] = nodes[local[i]].dofs[d];
+    l.gap = g.val();
+    for (unsigned int d = 0; d < dim; ++d)
+      l.normal[d] = nrm[d].val();
+    l.dgap.reinit(n);
+    l.force.reinit(n);
+    l.dforce.reinit(n, n);
+    for (unsigned int i = 0; i < n; ++i)
+      l.dgap(i) = g.dx(i);
+    const unsigned int base = dim * (1 + slot.at(v));
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        l.force(d)        = nrm[d].val();
+        l.force(base + d) = -nrm[d].val();
+        for (unsigned int j = 0; j < n; ++j)
+          {
+            l.dforce(d, j)        = nrm[d].dx(j);
+            l.dforce(base + d, j) = -nrm[d].dx(j);
+          }
       }
   }
 

@@ -41,19 +41,17 @@ namespace glide
     s.point = s.x;
     if (this->surface)
       {
-        const auto  start = std::chrono::steady_clock::now();
-        const auto &node  = (*this->nodes)[i];
-        const int   held  = held_piece[i];
-        auto       &c     = cached[i];
+        const auto start = std::chrono::steady_clock::now();
+        const int  held  = held_piece[i];
+        auto      &c     = cached[i];
         if (c.version != this->surface->version() || c.x != s.x ||
-            c.held != held)
+            c.held != held || c.partner != held_partner[i])
           {
-            c.projection = held >= 0 ?
-                             this->surface->project_onto(held, s.x) :
-                             this->surface->project(s.x, 1.5 * node.size);
+            c.projection = held_projection(i, s.x);
             c.version    = this->surface->version();
             c.x          = s.x;
             c.held       = held;
+            c.partner    = held_partner[i];
           }
         s.projection = c.projection;
         this->searching += std::chrono::steady_clock::now() - start;
@@ -122,10 +120,7 @@ namespace glide
     coupled[i] = this->surface->nodes_near(x, this->surface->facet_size());
     // ... and those of its projection now (onto the piece it is held on, if
     // it is).
-    const int  held       = held_piece[i];
-    const auto projection = held >= 0 ?
-                              this->surface->project_onto(held, x) :
-                              this->surface->project(x, 1.5 * node.size);
+    const auto projection = held_projection(i, x);
     if (projection.found)
       {
         const auto                used = this->surface->nodes_of(projection);
@@ -169,17 +164,56 @@ namespace glide
 
   template <int dim>
   void
-  NodeToSurfaceFinite<dim>::hold(const unsigned int i, const int piece)
+  NodeToSurfaceFinite<dim>::hold(const unsigned int i,
+                                 const int          piece,
+                                 const int          partner)
   {
     AssertIndexRange(i, held_piece.size());
     held_piece[i] = piece;
+    // At the vertex the two pieces share, where they are two faceted
+    // linear facets of a 2D master: symmetric in the two, where holding on
+    // either facet tilts the force by half the angle between them.
+    held_partner[i] =
+      partner >= 0 && this->surface &&
+          this->surface->project_at_vertex(piece, partner, (*this->nodes)[i].X)
+            .found ?
+        partner :
+        -1;
+  }
+
+  template <int dim>
+  typename MasterSurface<dim>::Projection
+  NodeToSurfaceFinite<dim>::held_projection(const unsigned int i,
+                                            const Point<dim>  &x) const
+  {
+    const int held = held_piece[i];
+    if (held < 0)
+      return this->surface->project(x, 1.5 * (*this->nodes)[i].size);
+    if (held_partner[i] >= 0)
+      {
+        const auto p =
+          this->surface->project_at_vertex(held, held_partner[i], x);
+        if (p.found)
+          return p;
+      }
+    return this->surface->project_onto(held, x);
   }
 
   template <int dim>
   void
   NodeToSurfaceFinite<dim>::release_holds()
   {
-    held_piece.assign(this->nodes ? this->nodes->size() : 0, -1);
+    // EXPERIMENT: keep vertex holds across steps.
+    const unsigned int n = this->nodes ? this->nodes->size() : 0;
+    if (std::getenv("GLIDE_KEEP_VERTEX_HOLDS") && held_partner.size() == n)
+      {
+        for (unsigned int i = 0; i < n; ++i)
+          if (held_partner[i] < 0)
+            held_piece[i] = -1;
+        return;
+      }
+    held_piece.assign(n, -1);
+    held_partner.assign(held_piece.size(), -1);
   }
 
   template <int dim>
@@ -265,7 +299,9 @@ namespace glide
         std::ostringstream after;
         after << " slave node(s) held on one master facet in this step (their "
                  "projection alternated between facets meeting at a corner; "
-                 "the gap is measured to that facet's plane, at most "
+                 "the gap is measured to that facet's plane, or, between "
+                 "two straight facets of a 2D master, along their mean "
+                 "normal at the vertex they share; at most "
               << difference << " from the free projection's, at most "
               << overshoot << " past the facet's end)";
         this->context.report(

@@ -19,6 +19,7 @@
 #include "test_helpers.h"
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <sstream>
 
@@ -446,6 +447,82 @@ TEST(MasterSurface, SpringDirectionIsContinuousAtFacetedCorners)
   MasterSurface<2>::Linearization l;
   smoothed->linearize(p, xs, slave_dofs, l);
   EXPECT_EQ(l.spring.size(), 0u);
+}
+
+// Issue 12 / R16.2: a slave node held at the vertex between the two
+// facets it alternated between (MasterSurface::project_at_vertex()): the
+// gap is measured along the unit bisector b of the facets' normals,
+// g = (x_s - x_v) . b, whichever facet is named first; its gradient with
+// respect to the slave node and the three master nodes is that of this
+// formula (central differences of the formula written here); the force
+// acts along b on the slave node and against it on the vertex node.
+TEST(MasterSurface, HeldAtAVertexAlongTheMeanNormal)
+{
+  Fixture<2>  s(ball_on_block(2, 0., 1, "hard"), "vertex.prm");
+  const auto  ball   = master_of<2>(s, "ball.curved", 0.);
+  const auto &x      = ball->get_positions();
+  const auto &nodes  = ball->get_nodes();
+  const auto &facets = ball->get_facets();
+  const std::array<types::global_dof_index, 2> slave_dofs{{0, 1}};
+  unsigned int                                 corners = 0;
+  for (const auto &[i, v, ti, tj, ni, nj, b] : faceted_corners(*ball))
+    {
+      const unsigned int j = facets[i].neighbours[1];
+      const unsigned int a = facets[i].nodes[0], c = facets[j].nodes[1];
+      const double       h  = ball->facet_size();
+      const Point<2>     xs = x[v] + 0.01 * h * b + 0.2 * h * ti;
+      for (const auto &[p1, p2] : {std::pair{i, j}, std::pair{j, i}})
+        {
+          const auto p = ball->project_at_vertex(p1, p2, xs);
+          ASSERT_TRUE(p.found) << i;
+          EXPECT_NEAR(p.gap, (xs - x[v]) * b, 1e-14);
+          EXPECT_NEAR((p.normal - b).norm(), 0., 1e-14);
+          MasterSurface<2>::Linearization l;
+          ball->linearize(p, xs, slave_dofs, l);
+          EXPECT_NEAR(l.gap, p.gap, 1e-14);
+          // The formula, with the four points as arguments.
+          const auto gap = [](const std::array<Point<2>, 4> &q) {
+            const auto normal = [](const Point<2> &p0, const Point<2> &p1) {
+              const Tensor<1, 2> t = p1 - p0;
+              return Tensor<1, 2>({t[1], -t[0]}) / t.norm();
+            };
+            Tensor<1, 2> m = normal(q[1], q[2]) + normal(q[2], q[3]);
+            return (q[0] - q[2]) * (m / m.norm());
+          };
+          const std::array<Point<2>, 4> q{{xs, x[a], x[v], x[c]}};
+          const std::array<int, 4>      node{{-1, int(a), int(v), int(c)}};
+          for (unsigned int k = 0; k < 4; ++k)
+            for (unsigned int d = 0; d < 2; ++d)
+              {
+                const auto dof =
+                  k == 0 ? slave_dofs[d] : nodes[node[k]].dofs[d];
+                const auto at = std::find(l.dofs.begin(), l.dofs.end(), dof);
+                ASSERT_NE(at, l.dofs.end()) << "node " << k;
+                auto plus = q, minus = q;
+                plus[k][d] += 1e-7 * h;
+                minus[k][d] -= 1e-7 * h;
+                const double fd = (gap(plus) - gap(minus)) / (2e-7 * h);
+                EXPECT_NEAR(l.dgap(at - l.dofs.begin()), fd, 1e-6)
+                  << i << " node " << k << " " << d;
+              }
+          for (unsigned int d = 0; d < 2; ++d)
+            {
+              EXPECT_NEAR(l.force(d), b[d], 1e-14);
+              const auto at =
+                std::find(l.dofs.begin(), l.dofs.end(), nodes[v].dofs[d]);
+              EXPECT_NEAR(l.force(at - l.dofs.begin()), -b[d], 1e-14);
+            }
+        }
+      // Facets that do not meet: no vertex.
+      EXPECT_FALSE(ball->project_at_vertex(i, i, xs).found);
+      ++corners;
+    }
+  EXPECT_GE(corners, 3u);
+  // Only on faceted masters (f = 0).
+  Fixture<2> smooth(ball_on_block(2, 0.2, 1, "hard"), "vertex_smooth.prm");
+  EXPECT_FALSE(master_of<2>(smooth, "ball.curved", 0.2)
+                 ->project_at_vertex(0, 1, Point<2>(0.5, 0.5))
+                 .found);
 }
 
 // Issue 12: Contact::held_gap_error(), by which the driver rejects a step

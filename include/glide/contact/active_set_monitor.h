@@ -11,6 +11,16 @@
 
 namespace glide
 {
+  /// A slave node to hold (index as in Contact::status()): on master piece
+  /// `piece`, or, where the formulation can, at the vertex that piece
+  /// shares with `partner` (-1: none).
+  struct Hold
+  {
+    unsigned int node    = 0;
+    int          piece   = -1;
+    int          partner = -1;
+  };
+
   /**
    * The driver's record of the contact state at each Newton iteration of one
    * nonlinear solve (R16.1): how often each slave node switched between
@@ -121,16 +131,16 @@ namespace glide
       return nodes;
     }
 
-    /// Nodes (local index, piece) whose projection went back to the piece
-    /// it had left at least maximum_returns times, with the piece they were
-    /// on last.
-    std::vector<std::pair<unsigned int, int>>
+    /// Nodes whose projection went back to the piece it had left at least
+    /// maximum_returns times, with the piece they were on last and the one
+    /// they alternated with.
+    std::vector<Hold>
     holds() const
     {
-      std::vector<std::pair<unsigned int, int>> h;
+      std::vector<Hold> h;
       for (unsigned int k = 0; k < returns.size(); ++k)
         if (returns[k] >= maximum_returns && pieces[k][1] >= 0)
-          h.emplace_back(k, pieces[k][1]);
+          h.push_back({k, pieces[k][1], pieces[k][0]});
       return h;
     }
 

@@ -103,12 +103,13 @@ namespace glide
     status(const VectorType &U) const;
 
     /// Hold the slave nodes @p holds (indices as in status(), with their
-    /// piece) on one facet of a faceted master for the next solves of this
-    /// step: their gap is measured to that facet's plane. Chosen by the
+    /// pieces) on one facet of a faceted master, or at the vertex between
+    /// the two facets they alternated between, for the next solves of this
+    /// step (Formulation::hold()). Chosen by the
     /// driver between two attempts at a step, never inside one, so that
     /// the residual stays a function of the iterate within each solve.
     void
-    hold(const std::vector<std::pair<unsigned int, int>> &holds);
+    hold(const std::vector<Hold> &holds);
 
     /// End all holds (at the start of every step).
     void

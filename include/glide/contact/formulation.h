@@ -175,9 +175,11 @@ namespace glide
     virtual int
     holdable_piece(const Constraint<dim> &s) const;
 
-    /// Hold node @p i on piece @p piece for the rest of the step.
+    /// Hold node @p i on piece @p piece for the rest of the step, or, where
+    /// the formulation can, at the vertex that piece shares with piece
+    /// @p partner (-1: none), which it alternated with.
     virtual void
-    hold(const unsigned int i, const int piece);
+    hold(const unsigned int i, const int piece, const int partner);
 
     /// End all holds.
     virtual void

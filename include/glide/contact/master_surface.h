@@ -137,6 +137,9 @@ namespace glide
       double                    gap     = 0.;
       dealii::Tensor<1, dim>    normal;
       dealii::Point<dim>        point;
+      /// Held at the vertex that piece shares with piece `partner` (2D,
+      /// faceted linear facets; project_at_vertex()); -1: not.
+      int partner = -1;
     };
     /// Gap and contact force direction with their derivatives with respect
     /// to `dofs` (slave node first, then the master nodes).
@@ -198,6 +201,18 @@ namespace glide
     /// Beyond the end of the master: not in contact.
     Projection
     project_onto(const unsigned int piece, const dealii::Point<dim> &x) const;
+
+    /// The gap of @p x to the vertex that pieces @p piece and @p partner
+    /// share, along their mean normal n_v = (n_a + n_b) / |n_a + n_b|:
+    /// g = (x - x_v) . n_v, symmetric in the two facets; for a slave node
+    /// whose projection alternates between two faceted (f = 0) linear
+    /// facets of a 2D master at a convex or concave vertex. Not found
+    /// (failed) where the pieces are not two such facets sharing a node
+    /// off any symmetry plane.
+    Projection
+    project_at_vertex(const unsigned int        piece,
+                      const unsigned int        partner,
+                      const dealii::Point<dim> &x) const;
 
     /// Linearization at projection @p p of the slave point @p x with slave
     /// DoFs @p slave_dofs.
@@ -275,6 +290,14 @@ namespace glide
     static constexpr double quadratic_fraction = 0.02;
 
   private:
+    /// linearize() of a projection held at a vertex (project_at_vertex()).
+    void
+    linearize_at_vertex(
+      const Projection                                       &p,
+      const dealii::Point<dim>                               &x,
+      const std::array<dealii::types::global_dof_index, dim> &slave_dofs,
+      Linearization                                          &l) const;
+
     /// project() with candidates from the search tree within @p radius.
     Projection
     project_within(const dealii::Point<dim> &x, const double radius) const;

@@ -58,7 +58,7 @@ namespace glide
     holdable_piece(const Constraint<dim> &s) const override;
 
     void
-    hold(const unsigned int i, const int piece) override;
+    hold(const unsigned int i, const int piece, const int partner) override;
 
     void
     release_holds() override;
@@ -110,6 +110,13 @@ namespace glide
     /// from 2 % to 12 % too high, and the ironing die's nodes ended up 1.7
     /// past their facets.
     std::vector<int> held_piece;
+    /// Per node: the piece it alternated with, where it is held at the
+    /// vertex the two share (MasterSurface::project_at_vertex()); -1: on
+    /// held_piece alone.
+    std::vector<int> held_partner;
+    /// The projection of node @p i at @p x: free, or as it is held.
+    typename MasterSurface<dim>::Projection
+    held_projection(const unsigned int i, const dealii::Point<dim> &x) const;
     /// Deformable masters: per node, the last projection with the slave
     /// position, master version() and held piece it was computed for (the
     /// residual and the Jacobian of one iterate share it; a cache of a pure
@@ -120,6 +127,7 @@ namespace glide
       dealii::Point<dim>                      x;
       std::uint64_t version = std::numeric_limits<std::uint64_t>::max();
       int           held    = -1;
+      int           partner = -1;
     };
     mutable std::vector<CachedProjection> cached;
   };
