@@ -203,17 +203,23 @@ namespace glide
   void
   NodeToSurfaceFinite<dim>::release_holds()
   {
-    // EXPERIMENT: keep vertex holds across steps.
+    // Vertex holds whose node was closed at its vertex at the end of the
+    // last converged step (carried, commit_step()) go on into the next:
+    // released, the node alternates again in every step.
     const unsigned int n = this->nodes ? this->nodes->size() : 0;
-    if (std::getenv("GLIDE_KEEP_VERTEX_HOLDS") && held_partner.size() == n)
+    if (held_piece.size() != n || carried.size() != n)
       {
-        for (unsigned int i = 0; i < n; ++i)
-          if (held_partner[i] < 0)
-            held_piece[i] = -1;
+        held_piece.assign(n, -1);
+        held_partner.assign(n, -1);
+        carried.assign(n, false);
         return;
       }
-    held_piece.assign(n, -1);
-    held_partner.assign(held_piece.size(), -1);
+    for (unsigned int i = 0; i < n; ++i)
+      if (!carried[i])
+        {
+          held_piece[i]   = -1;
+          held_partner[i] = -1;
+        }
   }
 
   template <int dim>
@@ -281,6 +287,7 @@ namespace glide
         // the held nodes from the end of their piece.
         std::vector<std::string> held;
         double                   difference = 0., overshoot = 0.;
+        carried.assign(held_piece.size(), false);
         for (unsigned int i = 0; i < held_piece.size(); ++i)
           if (held_piece[i] >= 0)
             {
@@ -289,6 +296,10 @@ namespace glide
               if (free.found)
                 difference =
                   std::max(difference, std::abs(free.gap - s[i].gap));
+              // Closed at its vertex, where the held gap is the free one.
+              carried[i] = held_partner[i] >= 0 && closed[i] && free.found &&
+                           std::abs(free.gap - s[i].gap) <=
+                             1e-8 * this->surface->facet_size();
               overshoot = std::max(overshoot, past_end(s[i]));
               std::ostringstream text;
               text << "(" << nodes[i].X << ")";

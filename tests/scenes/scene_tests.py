@@ -1630,27 +1630,25 @@ def case_robustness_faceted():
     (Linearization::spring), which does not jump where a projection passes
     a vertex. Before, neither was used there, and the block-slave cell did
     not converge at any level.
-    - Cylinder as slave (the block's flat top the faceted master), level 0:
-      converges (above the targets: a slave node at a master vertex sees
-      the force direction jump between the two facets' normals, and the
-      holds that end the alternation take extra solves); contact force = P,
-      no failed projection.
-    - Block as slave (the faceted cylinder the master), level 2: meets the
-      issue's targets (no cut-back, at most 10 iterations per step, mean at
-      most 6; measured 4 / 3.5), force = P, peak pressure within 3 % of
-      Hertz's. Levels 0 and 1 (3 and 5 slave nodes in the contact zone)
-      are printed, not checked: level 0 converges without cut-back but
-      above the targets (22, 9, 12, 8 iterations; 2026-12-04), level 1
-      does not converge. The cylinder, held in x at its centre only (the
-      middle of its flat top), turns freely about it but for the facets,
-      and the facets' normals, not symmetric about the first contact
-      point, push it to turn until slave nodes pass vertices; a known
-      failure (doc/theory/nonlinear-solution.md)."""
+    - Cylinder as slave (the block's flat top the faceted master), level 0,
+      and block as slave (the faceted cylinder the master), levels 1 and 2:
+      the issue's targets (no cut-back, at most 10 iterations per step,
+      mean at most 6), force = P, no failed projection; at level 2 the
+      peak pressure within 3 % of Hertz's. Measured 8, 3, 3, 3; 7, 3, 3, 3;
+      4, 4, 4, 4. Level 1 did not converge, and the cylinder slave took
+      8, 9, 10, 7, until a node alternating between two facets was held at
+      their shared vertex along the facets' mean normal, and kept there
+      into the next step while it stays closed at the vertex (2026-12-04):
+      held on one facet it tilted the force by half the facets' angle, and
+      released at each step it alternated again in every step.
+    - Block as slave, level 0 (3 slave nodes in the contact zone): printed,
+      not checked: converges without cut-back but above the targets in its
+      first step (22, 8, 2, 2 iterations; doc/theory/nonlinear-solution.md)."""
     sys.path.insert(0, os.path.join(ROOT, "study"))
     import robustness
     output = tempfile.mkdtemp(prefix="glide-robustness-")
     cases = dict(robustness_cases())
-    runs = [("ratio 3, cylinder slave", 0), ("ratio 3, block slave", 2)]
+    runs = [("ratio 3, cylinder slave", 0), ("ratio 3, block slave", 1), ("ratio 3, block slave", 2)]
     for label, level in runs:
         r = robustness.run_case(ARGS.glide, output, re.sub('[^a-z0-9]+', '-', label) + f"-{level}",
                                 formulation="nts-finite-f0", level=level, **cases[label])
@@ -1662,13 +1660,13 @@ def case_robustness_faceted():
         close(abs(r["force"]), r["P"], 1e-8, f"{what}: contact force = P")
         check(all(float(row["contact_hertz_projection_failed"]) == 0 for row in r["rows"]),
               f"{what}: no failed projection")
-        if label == "ratio 3, block slave":
-            its = r["iterations"]
-            check(r["cut_backs"] == 0, f"{what}: no cut-back")
-            check(max(its) <= 10, f"{what}: at most 10 iterations per step ({max(its)})")
-            check(sum(its) / len(its) <= 6, f"{what}: mean at most 6 ({sum(its) / len(its):.1f})")
+        its = r["iterations"]
+        check(r["cut_backs"] == 0, f"{what}: no cut-back")
+        check(max(its) <= 10, f"{what}: at most 10 iterations per step ({max(its)})")
+        check(sum(its) / len(its) <= 6, f"{what}: mean at most 6 ({sum(its) / len(its):.1f})")
+        if level == 2:
             close(r["p0_h"], r["p0"], 0.03, f"{what}: peak pressure against Hertz")
-    for level in (0, 1):
+    for level in (0,):
         r = robustness.run_case(ARGS.glide, output, f"block-slave-{level}", formulation="nts-finite-f0",
                                 level=level, **cases["ratio 3, block slave"])
         print(f"measured (known failure, not checked): f = 0, ratio 3, block slave, level {level}: "

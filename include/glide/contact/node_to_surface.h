@@ -101,7 +101,8 @@ namespace glide
     /// none), set by hold() between two attempts at a step. At a faceted
     /// corner the force direction jumps between the facets' normals, and
     /// Newton can alternate between them forever (f = 0 only: a smoothed
-    /// master has no corners). The holds end with the step. Carrying those
+    /// master has no corners). One-facet holds end with the step (vertex
+    /// holds closed at their vertex go on, `carried`). Carrying those
     /// still within 2 % of a facet of their piece into the next step was
     /// tried: the faceted ironing die's press took 10 instead of 39
     /// cut-backs, but the full ironing run then stopped at load factor
@@ -114,6 +115,9 @@ namespace glide
     /// vertex the two share (MasterSurface::project_at_vertex()); -1: on
     /// held_piece alone.
     std::vector<int> held_partner;
+    /// Per node: held at a vertex and closed there at the end of the last
+    /// converged step, so that the hold goes on (release_holds()).
+    std::vector<bool> carried;
     /// The projection of node @p i at @p x: free, or as it is held.
     typename MasterSurface<dim>::Projection
     held_projection(const unsigned int i, const dealii::Point<dim> &x) const;
