@@ -141,6 +141,36 @@ namespace glide
           return true;
         }
     }
+
+    /// The parts of a Linearization that linearize() and
+    /// linearize_at_vertex() share: the DoFs (slave node, then the master
+    /// nodes @p local), gap, normal and gap gradient from the automatic
+    /// derivatives, force and dforce sized and zero.
+    template <int dim, typename Node>
+    void
+    fill_gap(const std::vector<unsigned int>                        &local,
+             const std::vector<Node>                                &nodes,
+             const std::array<dealii::types::global_dof_index, dim> &slave,
+             const Fad                                              &g,
+             const std::array<Fad, dim>                             &nrm,
+             typename MasterSurface<dim>::Linearization             &l)
+    {
+      const unsigned int n = dim * (1 + local.size());
+      l.dofs.resize(n);
+      for (unsigned int d = 0; d < dim; ++d)
+        l.dofs[d] = slave[d];
+      for (unsigned int i = 0; i < local.size(); ++i)
+        for (unsigned int d = 0; d < dim; ++d)
+          l.dofs[dim * (1 + i) + d] = nodes[local[i]].dofs[d];
+      l.gap = g.val();
+      for (unsigned int d = 0; d < dim; ++d)
+        l.normal[d] = nrm[d].val();
+      l.dgap.reinit(n);
+      l.force.reinit(n);
+      l.dforce.reinit(n, n);
+      for (unsigned int i = 0; i < n; ++i)
+        l.dgap(i) = g.dx(i);
+    }
   } // namespace
 
   template <int dim>
@@ -1539,21 +1569,9 @@ namespace glide
           }
       }
 
-    l.dofs.resize(n);
-    for (unsigned int d = 0; d < dim; ++d)
-      l.dofs[d] = slave_dofs[d];
-    for (unsigned int i = 0; i < local.size(); ++i)
-      for (unsigned int d = 0; d < dim; ++d)
-        l.dofs[dim * (1 + i) + d] = nodes[local[i]].dofs[d];
-    l.gap = g.val();
-    for (unsigned int d = 0; d < dim; ++d)
-      l.normal[d] = nrm[d].val();
-    l.dgap.reinit(n);
-    l.force.reinit(n);
-    l.dforce.reinit(n, n);
+    fill_gap<dim>(local, nodes, slave_dofs, g, nrm, l);
     for (unsigned int i = 0; i < n; ++i)
       {
-        l.dgap(i)  = g.dx(i);
         l.force(i) = G[i].val();
         for (unsigned int j = 0; j < n; ++j)
           l.dforce(i, j) = G[i].dx(j);
@@ -1606,20 +1624,7 @@ namespace glide
       g += (s[d] - xv[d]) * nrm[d];
 
     l.spring.reinit(0);
-    l.dofs.resize(n);
-    for (unsigned int d = 0; d < dim; ++d)
-      l.dofs[d] = slave_dofs[d];
-    for (unsigned int i = 0; i < local.size(); ++i)
-      for (unsigned int d = 0; d < dim; ++d)
-        l.dofs[dim * (1 + i) + d] = nodes[local[i]].dofs[d];
-    l.gap = g.val();
-    for (unsigned int d = 0; d < dim; ++d)
-      l.normal[d] = nrm[d].val();
-    l.dgap.reinit(n);
-    l.force.reinit(n);
-    l.dforce.reinit(n, n);
-    for (unsigned int i = 0; i < n; ++i)
-      l.dgap(i) = g.dx(i);
+    fill_gap<dim>(local, nodes, slave_dofs, g, nrm, l);
     const unsigned int base = dim * (1 + slot.at(v));
     for (unsigned int d = 0; d < dim; ++d)
       {
