@@ -191,6 +191,18 @@ namespace glide
 
   template <int dim>
   void
+  Problem<dim>::follow(const VectorType &u)
+  {
+    if (contact.active() && contact.follow(u))
+      {
+        // The new ghost DoFs' constraints come with the new pattern.
+        contact.needs_new_pattern(u);
+        rebuild_pattern();
+      }
+  }
+
+  template <int dim>
+  void
   Problem<dim>::rebuild_pattern()
   {
     pcout << "    contact: sparsity pattern rebuilt (sliding)" << std::endl;
@@ -341,6 +353,7 @@ namespace glide
         // prediction far off, into inverted elements, for any load
         // increment however small.
         const auto scaled_norm = [&](const VectorType &u) {
+          follow(u);
           try
             {
               VectorType R(owned, comm);
@@ -395,6 +408,7 @@ namespace glide
     // initial guess if the scene asks for that retry. Every attempt's
     // iterations count.
     const VectorType U_start = U_trial;
+    follow(U_trial);
     monitor.reset();
     stop_on_alternation = true;
     have_restart        = false;
@@ -432,6 +446,7 @@ namespace glide
         // starts again from the step's initial guess.
         U_trial      = (again && have_restart) ? restart : U_start;
         have_restart = false;
+        follow(U_trial);
         monitor.reset();
         // The last attempt runs to its end.
         stop_on_alternation =
@@ -566,6 +581,7 @@ namespace glide
         monitor.reset();
         if (scene.load_stepping.tangent_predictor)
           predict(U, t, U_trial);
+        follow(U_trial);
         if (contact.active())
           if (const unsigned int n = contact.close_touching_nodes(U_trial))
             pcout << "  initial active set: " << n

@@ -71,6 +71,12 @@ namespace glide
     /// Rebuild the sparsity pattern and the Jacobian (sliding contact).
     void
     rebuild_pattern();
+    /// Under MPI, where the slave nodes or the master slid far since the
+    /// master facets were gathered: gather them again around @p u and
+    /// rebuild the pattern (Contact::follow()), before a residual at @p u
+    /// that is not KINSOL's next (a new attempt, the predictor's check).
+    void
+    follow(const VectorType &u);
     /// Tangent predictor ('Load stepping/Predictor'): one linear solve from
     /// the converged state @p U0 carries the increment of the prescribed
     /// values in @p U_trial into the bodies; kept only where it lowers the

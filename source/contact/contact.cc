@@ -222,11 +222,13 @@ namespace glide
               for (const auto id :
                    elasticity.get_mesh().surface(name, path + "/Master"))
                 master_ids.insert(id);
-            surface = std::make_unique<MasterSurface<dim>>(elasticity,
-                                                           master_ids,
-                                                           p.smoothing,
-                                                           path);
-            require(!surface->get_facets().empty(),
+            surface = std::make_unique<MasterSurface<dim>>(
+              elasticity,
+              master_ids,
+              p.smoothing,
+              path,
+              Utilities::MPI::n_mpi_processes(comm) > 1);
+            require(surface->n_facets_global() > 0,
                     "Contact pair '" + p.name + "': the master surface '" +
                       p.master + "' has no faces.");
           }
@@ -257,6 +259,25 @@ namespace glide
         double slave_modulus = 0.;
         pair.nodes   = find_slave_nodes(p, path, node_based, slave_modulus);
         pair.modulus = std::min(slave_modulus, master_modulus);
+        // Under MPI each process holds the master facets within reach of
+        // its slave nodes (R15.2): a search reaches 1.5 facets of either
+        // side from a node (a mortar segment: its slave facet and 1.5 of
+        // it around), taken 4 times; finite sliding may move that far
+        // again before follow() gathers anew.
+        if (surface && Utilities::MPI::n_mpi_processes(comm) > 1)
+          {
+            double slave_size = 0.;
+            for (const auto &node : pair.nodes)
+              slave_size = std::max(slave_size, node.size);
+            const double size  = std::max(surface->facet_size(),
+                                         Utilities::MPI::max(slave_size, comm));
+            pair.gather_reach  = 4. * size + 2. * surface->facet_size();
+            pair.gather_margin = p.sliding == "finite" ? 4. * size : 0.;
+            const auto [region, wanted] = slave_region(pair, VectorType());
+            surface->gather_near(VectorType(), region, wanted);
+            pair.gathered_at.assign(dim * pair.nodes.size(), 0.);
+            pair.gathers = 1;
+          }
         // A slave much stiffer than its deformable master: the usual
         // advice (the softer body is the slave) exists because the master's
         // nodes are not constrained, and a soft master passes through a
@@ -376,9 +397,19 @@ namespace glide
                  << Utilities::MPI::sum(nodes.empty() ? 0u : 1u, comm) << " of "
                  << n_processes << " processes";
             if (const auto *s = pairs.back().formulation->master_surface())
-              text << "; the master surface's " << s->get_facets().size()
-                   << " facets on " << s->n_owners()
-                   << " process(es), held by every process";
+              {
+                const unsigned int held = s->get_facets().size();
+                text << "; the master surface's " << s->n_facets_global()
+                     << " facets on " << s->n_owners()
+                     << " process(es); each process holds those within "
+                     << pairs.back().gather_reach + pairs.back().gather_margin
+                     << " of its slave nodes: "
+                     << Utilities::MPI::min(held, comm) << " to "
+                     << Utilities::MPI::max(held, comm);
+                if (pairs.back().gather_margin > 0.)
+                  text << ", gathered again after the nodes moved by "
+                       << 0.5 * pairs.back().gather_margin;
+              }
             if (Utilities::MPI::this_mpi_process(comm) == 0)
               messages.push_back(text.str());
           }
@@ -398,22 +429,7 @@ namespace glide
     multipliers.add_range(first_multiplier + offset,
                           first_multiplier + offset + n_local);
     types::global_dof_index next = first_multiplier + offset;
-    // Under MPI: the DoFs the formulations read beyond this process's
-    // own (master nodes, mortar slave facets), imported by view().
-    {
-      std::vector<types::global_dof_index> read;
-      for (const auto &pair : pairs)
-        pair.formulation->read_dofs(read);
-      std::sort(read.begin(), read.end());
-      read.erase(std::unique(read.begin(), read.end()), read.end());
-      read_ghosts = IndexSet(first_multiplier + total_multipliers);
-      if (Utilities::MPI::n_mpi_processes(comm) > 1)
-        read_ghosts.add_indices(read.begin(), read.end());
-      read_ghosts.compress();
-      import_ghosts =
-        Utilities::MPI::max(read_ghosts.n_elements() > 0 ? 1 : 0, comm) > 0;
-      ghosted.clear();
-    }
+    update_read_ghosts();
     for (auto &pair : pairs)
       if (pair.enforcement->block_size() > 0)
         for (auto &node : pair.nodes)
@@ -421,6 +437,27 @@ namespace glide
             node.multiplier = next;
             next += pair.enforcement->block_size();
           }
+  }
+
+  template <int dim>
+  void
+  Contact<dim>::update_read_ghosts()
+  {
+    // Under MPI: the DoFs the formulations read beyond this process's
+    // own (master nodes, mortar slave facets), imported by view().
+    std::vector<types::global_dof_index> read;
+    for (const auto &pair : pairs)
+      pair.formulation->read_dofs(read);
+    std::sort(read.begin(), read.end());
+    read.erase(std::unique(read.begin(), read.end()), read.end());
+    read_ghosts = IndexSet(multipliers.size());
+    if (Utilities::MPI::n_mpi_processes(comm) > 1)
+      read_ghosts.add_indices(read.begin(), read.end());
+    read_ghosts.compress();
+    import_ghosts =
+      Utilities::MPI::max(read_ghosts.n_elements() > 0 ? 1 : 0, comm) > 0;
+    ghosted.clear();
+    ghosts_changed = true;
   }
 
   template <int dim>
@@ -432,10 +469,98 @@ namespace glide
     const bool other =
       ghosted.size() != U.size() ||
       ghosted.locally_owned_elements() != U.locally_owned_elements();
-    if (Utilities::MPI::max(other ? 1 : 0, comm) > 0)
+    if (Utilities::MPI::max(other ? 1 : 0, comm) > 0 || ghosts_changed)
       ghosted.reinit(U.locally_owned_elements(), read_ghosts, comm);
-    ghosted = U;
+    ghosts_changed = false;
+    ghosted        = U;
     return ghosted;
+  }
+
+  template <int dim>
+  std::pair<BoundingBox<dim>, bool>
+  Contact<dim>::slave_region(const Pair &pair, const VectorType &U) const
+  {
+    Point<dim> lo, hi;
+    for (unsigned int i = 0; i < pair.nodes.size(); ++i)
+      {
+        const auto &node = pair.nodes[i];
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double y = node.X[d] + (U.size() > 0 ? U[node.dofs[d]] : 0.);
+            lo[d]          = i == 0 ? y : std::min(lo[d], y);
+            hi[d]          = i == 0 ? y : std::max(hi[d], y);
+          }
+      }
+    const double grow = pair.gather_margin + pair.gather_reach;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        lo[d] -= grow;
+        hi[d] += grow;
+      }
+    return {BoundingBox<dim>(std::make_pair(lo, hi)), !pair.nodes.empty()};
+  }
+
+  template <int dim>
+  double
+  Contact<dim>::motion_since_gather(const Pair &pair, const VectorType &U) const
+  {
+    double slave = 0.;
+    for (unsigned int i = 0; i < pair.nodes.size(); ++i)
+      for (unsigned int d = 0; d < dim; ++d)
+        slave = std::max(slave,
+                         std::abs(U[pair.nodes[i].dofs[d]] -
+                                  pair.gathered_at[dim * i + d]));
+    const double master = pair.formulation->master_surface()->own_motion(U);
+    // Per component: a node moves at most sqrt(dim) times its largest.
+    return std::sqrt(double(dim)) * (Utilities::MPI::max(slave, comm) +
+                                     Utilities::MPI::max(master, comm));
+  }
+
+  template <int dim>
+  bool
+  Contact<dim>::follow(const VectorType &U_in)
+  {
+    if (Utilities::MPI::n_mpi_processes(comm) == 1 || U_in.size() == 0)
+      return false;
+    bool any = false;
+    for (auto &pair : pairs)
+      {
+        if (!pair.formulation->slides() || pair.gather_margin == 0. ||
+            pair.formulation->master_surface() == nullptr)
+          continue;
+        const VectorType &U     = view(U_in);
+        const double      moved = motion_since_gather(pair, U);
+        if (moved <= 0.5 * pair.gather_margin)
+          continue;
+        const auto [region, wanted] = slave_region(pair, U);
+        pair.formulation->regather(U, region, wanted);
+        for (unsigned int i = 0; i < pair.nodes.size(); ++i)
+          for (unsigned int d = 0; d < dim; ++d)
+            pair.gathered_at[dim * i + d] = U[pair.nodes[i].dofs[d]];
+        ++pair.gathers;
+        const unsigned int held =
+          pair.formulation->master_surface()->get_facets().size();
+        const unsigned int fewest = Utilities::MPI::min(held, comm);
+        const unsigned int most   = Utilities::MPI::max(held, comm);
+        if (Utilities::MPI::this_mpi_process(comm) == 0)
+          {
+            std::ostringstream text;
+            text << "contact pair '" << pair.parameters->name
+                 << "': master facets gathered again (gather " << pair.gathers
+                 << "; slave nodes and master moved by " << moved
+                 << " since the last): each process holds " << fewest << " to "
+                 << most << " of "
+                 << pair.formulation->master_surface()->n_facets_global();
+            messages.push_back(text.str());
+          }
+        any = true;
+      }
+    if (any)
+      {
+        update_read_ghosts();
+        gathered = true;
+      }
+    return any;
   }
 
   template <int dim>
@@ -468,8 +593,10 @@ namespace glide
   bool
   Contact<dim>::needs_new_pattern(const VectorType &U_in)
   {
+    follow(U_in);
     const VectorType &U       = view(U_in);
-    bool              outside = false;
+    bool              outside = gathered;
+    gathered                  = false;
     for (const auto &pair : pairs)
       {
         pair.formulation->move(U);
@@ -596,8 +723,12 @@ namespace glide
     std::set<types::global_dof_index> masters, slaves;
     for (const auto &pair : pairs)
       if (const auto *surface = pair.formulation->master_surface())
-        for (const auto &node : surface->get_nodes())
-          masters.insert(node.dofs.begin(), node.dofs.end());
+        {
+          for (const auto &node : surface->get_nodes())
+            masters.insert(node.dofs.begin(), node.dofs.end());
+          masters.insert(surface->own_dofs().begin(),
+                         surface->own_dofs().end());
+        }
     const auto &constraints = elasticity.update_constraints();
     for (const auto &pair : pairs)
       {
@@ -657,7 +788,23 @@ namespace glide
   {
     const VectorType &U           = view(U_in);
     const auto       &constraints = elasticity.update_constraints();
-    std::string       failure; // a projection that failed on this process
+    // Under MPI: an iterate whose searches could reach master facets not
+    // held here (gathered around where the nodes were, follow()) would
+    // not be the serial run's residual.
+    for (const auto &pair : pairs)
+      if (pair.formulation->slides() && pair.gather_margin > 0. && U.size() > 0)
+        if (const double moved = motion_since_gather(pair, U);
+            moved > pair.gather_margin)
+          {
+            std::ostringstream text;
+            text << "contact pair '" << pair.parameters->name
+                 << "': the slave nodes and the master moved by " << moved
+                 << " in one Newton step, beyond the " << pair.gather_margin
+                 << " for which each process holds the master facets they "
+                    "can reach";
+            throw std::runtime_error(text.str());
+          }
+    std::string failure; // a projection that failed on this process
     typename Formulation<dim>::Linearization l;
     l.derivatives = J != nullptr;
     Vector<double>                       rhs;

@@ -61,8 +61,28 @@ namespace glide
   Formulation<dim>::read_dofs(std::vector<types::global_dof_index> &dofs) const
   {
     if (surface)
-      for (const auto &node : surface->get_nodes())
-        dofs.insert(dofs.end(), node.dofs.begin(), node.dofs.end());
+      {
+        for (const auto &node : surface->get_nodes())
+          dofs.insert(dofs.end(), node.dofs.begin(), node.dofs.end());
+        // A distributed surface: the own facets' nodes, whose motion
+        // decides when to gather again (Contact::follow()).
+        dofs.insert(dofs.end(),
+                    surface->own_dofs().begin(),
+                    surface->own_dofs().end());
+      }
+  }
+
+  template <int dim>
+  void
+  Formulation<dim>::regather(const VectorType               &U,
+                             const dealii::BoundingBox<dim> &region,
+                             const bool                      wanted)
+  {
+    std::vector<std::uint64_t> old_keys;
+    for (unsigned int i = 0; i < surface->get_pieces().size(); ++i)
+      old_keys.push_back(surface->piece_key(i));
+    surface->gather_near(U, region, wanted);
+    renumber_pieces(old_keys);
   }
 
   template <int dim>

@@ -1,3 +1,4 @@
+#include <glide/base/collective_failure.h>
 #include <glide/contact/facet_basis.h>
 #include <glide/contact/master_surface.h>
 #include <glide/scene/input_error.h>
@@ -206,8 +207,10 @@ namespace glide
   MasterSurface<dim>::MasterSurface(const Elasticity<dim> &elasticity,
                                     const std::set<types::boundary_id> &ids,
                                     const double       fraction,
-                                    const std::string &path)
+                                    const std::string &path,
+                                    const bool         distributed)
     : fraction(fraction)
+    , path(path)
   {
     const auto &dof_handler = elasticity.get_dof_handler();
     const auto &fe          = dof_handler.get_fe();
@@ -215,8 +218,9 @@ namespace glide
     const auto &unit_points = fe.get_unit_support_points();
     polynomial_degree       = fe.degree;
     const unsigned int p    = polynomial_degree;
-    const bool         axisymmetric =
+    axisymmetric =
       elasticity.get_scene().analysis == AnalysisType::axisymmetric;
+    comm = dof_handler.get_communicator();
 
     std::array<std::set<types::global_dof_index>, dim> symmetric;
     std::map<types::global_dof_index, unsigned int>    node_index;
@@ -327,39 +331,59 @@ namespace glide
     for (unsigned int k = 0; k < nodes.size(); ++k)
       for (unsigned int c = 0; c < dim; ++c)
         on_symmetry_plane[k][c] = symmetric[c].count(nodes[k].dofs[c]) > 0;
-    if (Utilities::MPI::n_mpi_processes(dof_handler.get_communicator()) > 1)
-      gather(dof_handler.get_communicator(), diameters);
-    for (const double d : diameters)
-      max_size = std::max(max_size, d);
-    x.resize(nodes.size());
-    for (unsigned int k = 0; k < nodes.size(); ++k)
-      x[k] = nodes[k].X;
-    pieces.clear();
-    if (facets.empty())
-      return;
-    if (dim == 2)
-      build_pieces_2d(axisymmetric, path);
+    if (Utilities::MPI::n_mpi_processes(comm) == 1)
+      {
+        for (unsigned int i = 0; i < facets.size(); ++i)
+          {
+            facets[i].key = i;
+            max_size      = std::max(max_size, diameters[i]);
+          }
+        total_facets = facets.size();
+        build();
+      }
+    else if (!distributed)
+      gather(diameters);
     else
-      build_neighbours_3d();
-    set_displacement(VectorType());
+      {
+        // R15.2: this process's facets stay aside, numbered as in the
+        // whole surface (those of the lower ranks first, as gather() does);
+        // gather_near() brings each process those within its reach.
+        const std::uint64_t n_own = facets.size();
+        std::uint64_t       first = 0;
+        MPI_Exscan(&n_own, &first, 1, MPI_UINT64_T, MPI_SUM, comm);
+        if (Utilities::MPI::this_mpi_process(comm) == 0)
+          first = 0;
+        pack(diameters, first, own_reals, own_integers);
+        for (const auto &node : nodes)
+          own_node_dofs.insert(own_node_dofs.end(),
+                               node.dofs.begin(),
+                               node.dofs.end());
+        own_gathered_at.assign(own_node_dofs.size(), 0.);
+        for (const double d : diameters)
+          max_size = std::max(max_size, d);
+        max_size     = Utilities::MPI::max(max_size, comm);
+        owners       = Utilities::MPI::sum(n_own > 0 ? 1u : 0u, comm);
+        total_facets = Utilities::MPI::sum(n_own, comm);
+        nodes.clear();
+        facets.clear();
+        on_symmetry_plane.clear();
+        build();
+      }
   }
 
   template <int dim>
   void
-  MasterSurface<dim>::gather(const MPI_Comm       comm,
-                             std::vector<double> &diameters)
+  MasterSurface<dim>::pack(const std::vector<double>            &diameters,
+                           const std::uint64_t                   first_key,
+                           std::vector<double>                  &reals,
+                           std::vector<types::global_dof_index> &integers) const
   {
-    // Per facet, as numbers: its diameter, then per node its reference
-    // position; and per node its DoFs and symmetry flags. Every process
-    // appends the facets of all processes in the order of their ranks,
-    // which is the order of the cells of one process (p4est partitions
-    // the cells in one space-filling-curve order), so that every process
-    // holds the same surface, numbered as on one process.
-    std::vector<double>                  reals;
-    std::vector<types::global_dof_index> integers;
+    reals.clear();
+    integers.clear();
     for (unsigned int i = 0; i < facets.size(); ++i)
       {
         reals.push_back(diameters[i]);
+        integers.push_back(first_key + i);
         for (const auto k : facets[i].nodes)
           {
             for (unsigned int d = 0; d < dim; ++d)
@@ -370,51 +394,213 @@ namespace glide
               integers.push_back(on_symmetry_plane[k][d] ? 1 : 0);
           }
       }
+  }
+
+  template <int dim>
+  void
+  MasterSurface<dim>::unpack(
+    const std::vector<std::pair<std::vector<double>,
+                                std::vector<types::global_dof_index>>> &parts)
+  {
     const unsigned int n_nodes =
       Utilities::fixed_power<dim - 1>(polynomial_degree + 1);
-    owners               = Utilities::MPI::sum(facets.empty() ? 0u : 1u, comm);
-    const auto all_reals = Utilities::MPI::all_gather(comm, reals);
-    const auto all_integers = Utilities::MPI::all_gather(comm, integers);
+    // Per facet: key, and where its numbers start.
+    std::vector<std::tuple<std::uint64_t,
+                           const double *,
+                           const types::global_dof_index *>>
+      records;
+    for (const auto &[R, I] : parts)
+      for (std::size_t a = 0, b = 0; a < R.size();
+           a += 1 + n_nodes * dim, b += 1 + 2 * n_nodes * dim)
+        records.emplace_back(I[b], &R[a], &I[b]);
+    std::sort(records.begin(), records.end(), [](const auto &u, const auto &v) {
+      return std::get<0>(u) < std::get<0>(v);
+    });
     nodes.clear();
     facets.clear();
     on_symmetry_plane.clear();
-    diameters.clear();
     std::map<types::global_dof_index, unsigned int> node_index;
-    for (unsigned int r = 0; r < all_reals.size(); ++r)
+    for (const auto &[key, R, I] : records)
       {
-        const auto &R = all_reals[r];
-        const auto &I = all_integers[r];
-        for (std::size_t a = 0, b = 0; a < R.size();)
+        max_size = std::max(max_size, R[0]);
+        Facet facet;
+        facet.neighbours.fill(-1);
+        facet.key = key;
+        for (unsigned int j = 0; j < n_nodes; ++j)
           {
-            diameters.push_back(R[a++]);
-            Facet facet;
-            facet.neighbours.fill(-1);
-            for (unsigned int j = 0; j < n_nodes; ++j)
+            Node                           node;
+            const double                  *r = R + 1 + j * dim;
+            const types::global_dof_index *i = I + 1 + 2 * j * dim;
+            std::array<bool, dim>          flags;
+            for (unsigned int d = 0; d < dim; ++d)
               {
-                Node node;
-                for (unsigned int d = 0; d < dim; ++d)
-                  node.X[d] = R[a++];
-                for (unsigned int d = 0; d < dim; ++d)
-                  node.dofs[d] = I[b++];
-                std::array<bool, dim> flags;
-                for (unsigned int d = 0; d < dim; ++d)
-                  flags[d] = I[b++] != 0;
-                const auto [it, inserted] =
-                  node_index.emplace(node.dofs[0], nodes.size());
-                if (inserted)
-                  {
-                    nodes.push_back(node);
-                    on_symmetry_plane.push_back(flags);
-                  }
-                else
-                  for (unsigned int d = 0; d < dim; ++d)
-                    on_symmetry_plane[it->second][d] =
-                      on_symmetry_plane[it->second][d] || flags[d];
-                facet.nodes.push_back(it->second);
+                node.X[d]    = r[d];
+                node.dofs[d] = i[d];
+                flags[d]     = i[dim + d] != 0;
               }
-            facets.push_back(facet);
+            const auto [it, inserted] =
+              node_index.emplace(node.dofs[0], nodes.size());
+            if (inserted)
+              {
+                nodes.push_back(node);
+                on_symmetry_plane.push_back(flags);
+              }
+            else
+              for (unsigned int d = 0; d < dim; ++d)
+                on_symmetry_plane[it->second][d] =
+                  on_symmetry_plane[it->second][d] || flags[d];
+            facet.nodes.push_back(it->second);
+          }
+        facets.push_back(facet);
+      }
+    build();
+  }
+
+  template <int dim>
+  void
+  MasterSurface<dim>::build()
+  {
+    x.resize(nodes.size());
+    for (unsigned int k = 0; k < nodes.size(); ++k)
+      x[k] = nodes[k].X;
+    pieces.clear();
+    corners.clear();
+    node_normal.clear();
+    piece_of_key.clear();
+    searchable = false;
+    ++positions_version;
+    if (facets.empty())
+      return;
+    if (dim == 2)
+      build_pieces_2d(axisymmetric, path);
+    else
+      build_neighbours_3d();
+    for (unsigned int i = 0; i < pieces.size(); ++i)
+      piece_of_key[piece_key(i)] = i;
+    set_displacement(VectorType());
+  }
+
+  template <int dim>
+  int
+  MasterSurface<dim>::find_piece(const std::uint64_t key) const
+  {
+    const auto it = piece_of_key.find(key);
+    return it == piece_of_key.end() ? -1 : static_cast<int>(it->second);
+  }
+
+  template <int dim>
+  void
+  MasterSurface<dim>::gather_near(const VectorType       &U,
+                                  const BoundingBox<dim> &region,
+                                  const bool              wanted)
+  {
+    // Every process's region: lower corner, upper corner, wanted.
+    std::vector<double> mine;
+    for (unsigned int d = 0; d < dim; ++d)
+      mine.push_back(region.get_boundary_points().first[d]);
+    for (unsigned int d = 0; d < dim; ++d)
+      mine.push_back(region.get_boundary_points().second[d]);
+    mine.push_back(wanted ? 1. : 0.);
+    const auto regions = Utilities::MPI::all_gather(comm, mine);
+
+    // Send each own facet whose current bounding box meets a region there.
+    const unsigned int n_nodes =
+      Utilities::fixed_power<dim - 1>(polynomial_degree + 1);
+    const std::size_t n_reals    = 1 + n_nodes * dim,
+                      n_integers = 1 + 2 * n_nodes * dim;
+    std::map<unsigned int, std::vector<double>>                  reals;
+    std::map<unsigned int, std::vector<types::global_dof_index>> integers;
+    for (std::size_t a = 0, b = 0; a < own_reals.size();
+         a += n_reals, b += n_integers)
+      {
+        Point<dim> lo, hi;
+        for (unsigned int j = 0; j < n_nodes; ++j)
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const auto   dof = own_integers[b + 1 + 2 * j * dim + d];
+              const double y =
+                own_reals[a + 1 + j * dim + d] + (U.size() > 0 ? U[dof] : 0.);
+              lo[d] = j == 0 ? y : std::min(lo[d], y);
+              hi[d] = j == 0 ? y : std::max(hi[d], y);
+            }
+        for (unsigned int r = 0; r < regions.size(); ++r)
+          {
+            const auto &g    = regions[r];
+            bool        meet = g[2 * dim] > 0.;
+            for (unsigned int d = 0; d < dim && meet; ++d)
+              meet = lo[d] <= g[dim + d] && g[d] <= hi[d];
+            if (!meet)
+              continue;
+            reals[r].insert(reals[r].end(),
+                            own_reals.begin() + a,
+                            own_reals.begin() + a + n_reals);
+            integers[r].insert(integers[r].end(),
+                               own_integers.begin() + b,
+                               own_integers.begin() + b + n_integers);
           }
       }
+    const auto got_reals    = Utilities::MPI::some_to_some(comm, reals);
+    const auto got_integers = Utilities::MPI::some_to_some(comm, integers);
+    std::vector<
+      std::pair<std::vector<double>, std::vector<types::global_dof_index>>>
+      parts;
+    for (const auto &[rank, R] : got_reals)
+      parts.emplace_back(R, got_integers.at(rank));
+    // The smoothing's checks (a branching 2D chain, an edge of three
+    // facets) may fail on the part one process holds only: every process
+    // throws the same error.
+    std::string failure;
+    try
+      {
+        unpack(parts);
+      }
+    catch (const std::exception &e)
+      {
+        failure = e.what();
+      }
+    throw_first_failure<InputError>(failure, comm);
+    for (unsigned int i = 0; i < own_node_dofs.size(); ++i)
+      own_gathered_at[i] = U.size() > 0 ? U[own_node_dofs[i]] : 0.;
+  }
+
+  template <int dim>
+  double
+  MasterSurface<dim>::own_motion(const VectorType &U) const
+  {
+    double motion = 0.;
+    if (U.size() > 0)
+      for (unsigned int i = 0; i < own_node_dofs.size(); ++i)
+        motion =
+          std::max(motion, std::abs(U[own_node_dofs[i]] - own_gathered_at[i]));
+    return motion;
+  }
+
+  template <int dim>
+  void
+  MasterSurface<dim>::gather(const std::vector<double> &diameters)
+  {
+    // Every process appends the facets of all processes in the order of
+    // their ranks, which is the order of the cells of one process (p4est
+    // partitions the cells in one space-filling-curve order), so that
+    // every process holds the same surface, numbered as on one process.
+    const std::uint64_t n_own = facets.size();
+    std::uint64_t       first = 0;
+    MPI_Exscan(&n_own, &first, 1, MPI_UINT64_T, MPI_SUM, comm);
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      first = 0;
+    owners       = Utilities::MPI::sum(n_own > 0 ? 1u : 0u, comm);
+    total_facets = Utilities::MPI::sum(n_own, comm);
+    std::vector<double>                  reals;
+    std::vector<types::global_dof_index> integers;
+    pack(diameters, first, reals, integers);
+    const auto all_reals    = Utilities::MPI::all_gather(comm, reals);
+    const auto all_integers = Utilities::MPI::all_gather(comm, integers);
+    std::vector<
+      std::pair<std::vector<double>, std::vector<types::global_dof_index>>>
+      parts;
+    for (unsigned int r = 0; r < all_reals.size(); ++r)
+      parts.emplace_back(all_reals[r], all_integers[r]);
+    unpack(parts);
   }
 
   template <int dim>
@@ -557,6 +743,7 @@ namespace glide
               {
                 piece.begin = f;
                 Piece t     = transition(i, start, a);
+                t.role      = 1;
                 add_end(t, facet.nodes, true, true, N2, dN2, -1.);
                 add_end(t, facet.nodes, false, false, N2, dN2, 1.);
                 pieces.push_back(t);
@@ -578,6 +765,7 @@ namespace glide
                 lagrange(p, fj, M2.data(), dM2.data());
                 piece.end = 1. - fj;
                 Piece t   = transition(i, 0, -1);
+                t.role    = 2;
                 add_end(t, facet.nodes, false, true, M1, dM1, 1., fj);
                 add_end(t, facets[next].nodes, false, false, M2, dM2, 1., fj);
                 pieces.push_back(t);
@@ -589,6 +777,7 @@ namespace glide
               {
                 piece.end = 1. - f;
                 Piece t   = transition(i, end, a);
+                t.role    = 3;
                 add_end(t, facet.nodes, false, true, N1, dN1, 1.);
                 add_end(t, facet.nodes, true, false, N1, dN1, -1.);
                 pieces.push_back(t);

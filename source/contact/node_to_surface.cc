@@ -159,7 +159,7 @@ namespace glide
     if (!this->surface || !s.found() ||
         this->context.parameters.smoothing != 0.)
       return -1;
-    return s.projection.piece;
+    return static_cast<int>(this->surface->piece_key(s.projection.piece));
   }
 
   template <int dim>
@@ -169,16 +169,50 @@ namespace glide
                                  const int          partner)
   {
     AssertIndexRange(i, held_piece.size());
-    held_piece[i] = piece;
+    // Keys (holdable_piece()) to the pieces held here.
+    const int on = piece >= 0 && this->surface ?
+                     this->surface->find_piece(static_cast<unsigned>(piece)) :
+                     -1;
+    const int with =
+      partner >= 0 && this->surface ?
+        this->surface->find_piece(static_cast<unsigned>(partner)) :
+        -1;
+    held_piece[i] = on;
     // At the vertex the two pieces share, where they are two faceted
     // linear facets of a 2D master: symmetric in the two, where holding on
     // either facet tilts the force by half the angle between them.
     held_partner[i] =
-      partner >= 0 && this->surface &&
-          this->surface->project_at_vertex(piece, partner, (*this->nodes)[i].X)
+      on >= 0 && with >= 0 &&
+          this->surface->project_at_vertex(on, with, (*this->nodes)[i].X)
             .found ?
-        partner :
+        with :
         -1;
+  }
+
+  template <int dim>
+  void
+  NodeToSurfaceFinite<dim>::renumber_pieces(
+    const std::vector<std::uint64_t> &old_keys)
+  {
+    // A piece that is no longer held here (it left the reach of this
+    // process's slave nodes) cannot be one a node is on.
+    const auto renumber = [&](const int piece) {
+      return piece >= 0 ? this->surface->find_piece(old_keys[piece]) : -1;
+    };
+    for (unsigned int i = 0; i < held_piece.size(); ++i)
+      {
+        held_piece[i]   = renumber(held_piece[i]);
+        held_partner[i] = held_piece[i] >= 0 ? renumber(held_partner[i]) : -1;
+      }
+    for (auto &p : previous_projection)
+      if (p.found)
+        {
+          const int piece = renumber(static_cast<int>(p.piece));
+          p.found         = piece >= 0;
+          p.piece         = piece >= 0 ? piece : 0;
+          p.partner       = renumber(p.partner);
+        }
+    // The cached projections refer to the old pieces: version() changed.
   }
 
   template <int dim>

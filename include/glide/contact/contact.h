@@ -92,9 +92,19 @@ namespace glide
 
     /// True if a slave node at iterate @p U projects onto master nodes
     /// outside the current sparsity pattern (it slid further than
-    /// add_sparsity() allowed for): then the pattern must be rebuilt.
+    /// add_sparsity() allowed for), or follow() gathered master facets
+    /// again: then the pattern must be rebuilt.
     bool
     needs_new_pattern(const VectorType &U);
+
+    /// Under MPI (R15.2; collective): each process holds the master facets
+    /// within reach of its slave nodes, gathered where they were. Where
+    /// the slave nodes and the master of a finite-sliding pair have moved
+    /// by more than half of gather_margin since, gather them again around
+    /// the positions at @p U. True if it did: the ghost DoFs and the
+    /// sparsity pattern must then be rebuilt (Problem::rebuild_pattern()).
+    bool
+    follow(const VectorType &U);
 
     /// The state of every locally owned slave node (all pairs, in order)
     /// at iterate @p U, for the driver's ActiveSetMonitor. Reads nothing
@@ -259,7 +269,16 @@ namespace glide
       bool compliant_master = false;
       /// The log has said that the master's facets are the shorter where
       /// the slave nodes touch (finer_master_facets(); once per run).
-      bool                                     finer_master_said = false;
+      bool finer_master_said = false;
+      /// Under MPI (R15.2): how far slave nodes and master may move (the
+      /// largest motion of each, summed) from where the master facets
+      /// were gathered before a search could reach facets not held here
+      /// (finite sliding; 0: gathered once), how far beyond that a search
+      /// reaches, and the slave nodes' displacements at the gather.
+      double                                   gather_margin = 0.;
+      double                                   gather_reach  = 0.;
+      std::vector<double>                      gathered_at;
+      unsigned int                             gathers = 0;
       std::vector<SlaveNode<dim>>              nodes; ///< locally owned
       std::unique_ptr<Formulation<dim>>        formulation;
       std::unique_ptr<ContactEnforcement<dim>> enforcement;
@@ -290,6 +309,21 @@ namespace glide
     /// what every function that takes an iterate reads.
     const VectorType &
     view(const VectorType &U) const;
+
+    /// The DoFs the formulations read (ghost_dofs()), again.
+    void
+    update_read_ghosts();
+
+    /// The box of this process's slave nodes of @p pair at @p U (the
+    /// view(); empty: the reference positions), grown by gather_margin +
+    /// gather_reach: the master facets it needs; false where it has none.
+    std::pair<dealii::BoundingBox<dim>, bool>
+    slave_region(const Pair &pair, const VectorType &U) const;
+
+    /// Collective: the largest motion of a slave node of @p pair plus that
+    /// of a master node since the master facets were gathered (U: view()).
+    double
+    motion_since_gather(const Pair &pair, const VectorType &U) const;
 
     /// Add a log message listing @p nodes (gathered from all processes).
     void
@@ -359,12 +393,16 @@ namespace glide
     std::vector<Pair>      pairs;
     /// The iterate of the last needs_new_pattern() that asked for a new
     /// pattern (empty before): add_sparsity() couples at it.
-    VectorType                      last_displacement;
-    double                          time = 0.; ///< load factor
-    std::vector<std::string>        messages;
-    dealii::IndexSet                multipliers;
-    dealii::IndexSet                read_ghosts;
-    bool                            import_ghosts = false;
+    VectorType               last_displacement;
+    double                   time = 0.; ///< load factor
+    std::vector<std::string> messages;
+    dealii::IndexSet         multipliers;
+    dealii::IndexSet         read_ghosts;
+    bool                     import_ghosts = false;
+    /// read_ghosts changed (follow()): view() sets up ghosted again.
+    mutable bool ghosts_changed = false;
+    /// follow() gathered since the last needs_new_pattern().
+    bool                            gathered = false;
     mutable VectorType              ghosted;
     dealii::types::global_dof_index total_multipliers  = 0;
     double                          max_youngs_modulus = 0.;

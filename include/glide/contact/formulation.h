@@ -171,15 +171,36 @@ namespace glide
     outside_pattern(const unsigned int i, const Constraint<dim> &s) const;
 
     /// The master piece of constraint @p s that the driver may hold the
-    /// node on (faceted deformable masters; -1: none).
+    /// node on (faceted deformable masters), by its key
+    /// (MasterSurface::piece_key(), which a new gather does not change);
+    /// -1: none.
     virtual int
     holdable_piece(const Constraint<dim> &s) const;
 
-    /// Hold node @p i on piece @p piece for the rest of the step, or, where
-    /// the formulation can, at the vertex that piece shares with piece
-    /// @p partner (-1: none), which it alternated with.
+    /// Hold node @p i on the piece with key @p piece for the rest of the
+    /// step, or, where the formulation can, at the vertex that piece shares
+    /// with the piece with key @p partner (-1: none), which it alternated
+    /// with.
     virtual void
     hold(const unsigned int i, const int piece, const int partner);
+
+    /// Under MPI: whether the master facets a slave node reaches change as
+    /// it slides (finite sliding), so that Contact gathers them again as
+    /// the nodes go (R15.2). Small sliding reaches its anchors' facets
+    /// only, gathered once.
+    virtual bool
+    slides() const
+    {
+      return false;
+    }
+
+    /// Collective: gather the master facets within @p region again
+    /// (MasterSurface::gather_near(); @p U with the DoFs of read_dofs()),
+    /// and carry whatever refers to the old pieces over to the new ones.
+    void
+    regather(const VectorType               &U,
+             const dealii::BoundingBox<dim> &region,
+             const bool                      wanted);
 
     /// End all holds.
     virtual void
@@ -276,6 +297,14 @@ namespace glide
     }
 
   protected:
+    /// After regather(): refer to the new pieces; @p old_keys gives the
+    /// key of each old piece (MasterSurface::piece_key()).
+    virtual void
+    renumber_pieces(const std::vector<std::uint64_t> &old_keys)
+    {
+      (void)old_keys;
+    }
+
     /// Add the tangential part of the relative motion @p relative of node
     /// @p i to its slip, with components along the tangents of @p normal.
     void

@@ -100,6 +100,10 @@ namespace glide
       /// Neighbour facet across each side (2D: at xi = 0, xi = 1; 3D: the
       /// edges xi = 0, xi = 1, eta = 0, eta = 1), -1 at the surface boundary.
       std::array<int, 2 * (dim - 1)> neighbours;
+      /// Its number in the whole surface as one process numbers it (the
+      /// order of the cells), whatever the partition and whichever facets
+      /// a process holds.
+      std::uint64_t key = 0;
     };
     enum class PieceKind
     {
@@ -120,6 +124,10 @@ namespace glide
       std::vector<std::array<double, 4>>         coefficients;
       int          mirror_node = -1; ///< node on the symmetry plane
       unsigned int mirror_axis = 0;
+      /// Which piece of its facet (piece_key()): 0 the facet, 1 the mirror
+      /// transition at its start, 2 the transition to the next facet, 3 the
+      /// mirror transition at its end.
+      unsigned int role = 0;
     };
     struct Projection
     {
@@ -165,10 +173,54 @@ namespace glide
 
     /// The master surface made of the boundary faces with ids @p ids.
     /// @p path names the contact pair in error messages.
+    /// Under MPI every process holds the whole surface, unless
+    /// @p distributed: then it keeps its own cells' facets aside and holds
+    /// none until gather_near() brings those within reach of its slave
+    /// nodes (R15.2).
     MasterSurface(const Elasticity<dim>                      &elasticity,
                   const std::set<dealii::types::boundary_id> &ids,
                   const double                                fraction,
-                  const std::string                          &path);
+                  const std::string                          &path,
+                  const bool distributed = false);
+
+    /// Distributed surfaces (collective): hold the facets of every process
+    /// whose current bounding box meets @p region, the box this process
+    /// needs (if @p wanted; else none), in the order of their keys, with their
+    /// smoothing rebuilt. @p U must hold the DoFs of own_dofs(). Positions
+    /// are reset to the reference ones and version() changes: the caller
+    /// moves the surface again, after importing the new nodes' DoFs.
+    void
+    gather_near(const VectorType               &U,
+                const dealii::BoundingBox<dim> &region,
+                const bool                      wanted);
+
+    /// DoFs of the nodes of this process's own facets (distributed
+    /// surfaces; empty otherwise).
+    const std::vector<dealii::types::global_dof_index> &
+    own_dofs() const
+    {
+      return own_node_dofs;
+    }
+    /// The largest change of a displacement component of own_dofs() since
+    /// the last gather_near(), at @p U.
+    double
+    own_motion(const VectorType &U) const;
+    /// Number of facets of the whole surface (on every process).
+    std::uint64_t
+    n_facets_global() const
+    {
+      return total_facets;
+    }
+    /// A number for piece @p piece that does not depend on which facets a
+    /// process holds (its facet's key and its role), and the piece with
+    /// key @p key here (-1: not held).
+    std::uint64_t
+    piece_key(const unsigned int piece) const
+    {
+      return 4 * facets[pieces[piece].facet].key + pieces[piece].role;
+    }
+    int
+    find_piece(const std::uint64_t key) const;
 
     /// Current positions x = X + u (U: displacement first), and, if
     /// @p search, the search tree of the pieces' bounding boxes (small
@@ -265,7 +317,7 @@ namespace glide
       return pieces;
     }
     /// The number of processes whose cells hold facets of the surface
-    /// (every process holds all of them, gather()).
+    /// (every process holds all of them, gather(), unless distributed).
     unsigned int
     n_owners() const
     {
@@ -305,7 +357,26 @@ namespace glide
     /// Under MPI: replace this process's facets (of its own cells) by those
     /// of every process, with their @p diameters.
     void
-    gather(const MPI_Comm comm, std::vector<double> &diameters);
+    gather(const std::vector<double> &diameters);
+    /// This process's facets with their keys, as numbers (per facet: its
+    /// diameter, then per node its reference position; and its key, then
+    /// per node its DoFs and symmetry flags).
+    void
+    pack(const std::vector<double>                    &diameters,
+         const std::uint64_t                           first_key,
+         std::vector<double>                          &reals,
+         std::vector<dealii::types::global_dof_index> &integers) const;
+    /// Replace the facets by those of the packed lists @p parts, in the
+    /// order of their keys, and rebuild pieces and smoothing.
+    void
+    unpack(
+      const std::vector<std::pair<std::vector<double>,
+                                  std::vector<dealii::types::global_dof_index>>>
+        &parts);
+    /// Pieces (2D) or neighbours and pieces (3D), the key map and the
+    /// positions of the facets held.
+    void
+    build();
     void
     build_pieces_2d(const bool axisymmetric, const std::string &path);
     void
@@ -380,6 +451,19 @@ namespace glide
     double                              max_size          = 0.;
     unsigned int                        polynomial_degree = 1;
     unsigned int                        owners            = 1;
+    std::uint64_t                       total_facets      = 0;
+    bool                                axisymmetric      = false;
+    std::string                         path;
+    MPI_Comm                            comm = MPI_COMM_SELF;
+    /// Distributed surfaces: this process's own facets, packed (pack()),
+    /// their nodes' DoFs, and those DoFs' displacements at the last
+    /// gather_near().
+    std::vector<double>                          own_reals;
+    std::vector<dealii::types::global_dof_index> own_integers;
+    std::vector<dealii::types::global_dof_index> own_node_dofs;
+    std::vector<double>                          own_gathered_at;
+    /// piece_key() -> piece.
+    std::map<std::uint64_t, unsigned int> piece_of_key;
     using Leaf = std::pair<dealii::BoundingBox<dim>, unsigned int>;
     dealii::RTree<Leaf> tree;
   };

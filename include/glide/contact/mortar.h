@@ -102,6 +102,12 @@ namespace glide
     outside_pattern(const unsigned int     i,
                     const Constraint<dim> &s) const override;
 
+    bool
+    slides() const override
+    {
+      return true;
+    }
+
     void
     commit_step(const VectorType                   &U,
                 const std::vector<Constraint<dim>> &s,
@@ -127,6 +133,15 @@ namespace glide
     /// The terms of node @p i at the current positions (move()), in double.
     Terms<double>
     terms(const unsigned int i) const;
+
+  protected:
+    /// The memo of facet pairs refers to the old master facets; the search
+    /// tree follows version().
+    void
+    renumber_pieces(const std::vector<std::uint64_t> &) override
+    {
+      pair_cache.reset();
+    }
 
   private:
     /// The slave and master nodes and the master facets that enter the

@@ -63,6 +63,12 @@ namespace glide
     void
     release_holds() override;
 
+    bool
+    slides() const override
+    {
+      return this->surface != nullptr;
+    }
+
     unsigned int
     n_held() const override;
     int
@@ -84,6 +90,10 @@ namespace glide
                 const std::vector<bool>            &closed,
                 const double                        t_old,
                 const double                        t_new) override;
+
+  protected:
+    void
+    renumber_pieces(const std::vector<std::uint64_t> &old_keys) override;
 
   private:
     /// Distance of constraint @p s from the end of its piece along the
