@@ -752,10 +752,10 @@ def case_contact_deformable_mpi_matches_serial():
     axisymmetric, 3D with hanging nodes), small sliding with anchors,
     mortar (2D, 3D), small-sliding surface to surface (2D: averaging
     regions that hold slave nodes of two processes; 3D), against the serial
-    run (compare_with_serial). Every process holds the whole master
-    surface; the log says how the pair is split, and the test requires the
-    slave nodes or the master facets to be on several processes, so that
-    the contact zone is cut by the partition."""
+    run (compare_with_serial). Each process holds the master facets within
+    reach of its slave nodes (R15.2); the log says how the pair is split,
+    and the test requires the slave nodes or the master facets to be on
+    several processes, so that the contact zone is cut by the partition."""
     scenes = [("hertz-2d-elastic.prm", "hertz", ()),
               ("hertz-2d-mortar.prm", "hertz", ()),
               ("hertz-axisymmetric-elastic.prm", "hertz", ()),
@@ -785,6 +785,10 @@ def case_contact_deformable_mpi_matches_serial():
         check(split is not None and int(split.group(2)) > 1 and
               (int(split.group(1)) > 1 or int(split.group(3)) > 1),
               f"{what}: slave nodes or master facets on several processes ({split.group(0) if split else 'no'})")
+        held = re.search(r"the master surface's (\d+) facets .*: (\d+) to (\d+)", log)
+        if held:
+            print(f"measured: {what}: each process holds {held.group(2)} to {held.group(3)} "
+                  f"of the master's {held.group(1)} facets")
         if "surface to surface" in what and int(split.group(1)) > 1:
             # Slave nodes on several processes: regions must straddle them.
             cut = re.search(r"surface to surface: (\d+) averaging region\(s\) hold slave nodes of another process", log)
@@ -814,7 +818,9 @@ def case_ironing_mpi_matches_serial():
     slab and slid 1.0 in 20 nominal steps on 4 processes: the slab's top
     (master) is split between processes, and the die's nodes slide from
     facets of one onto those of another; the run matches the serial one
-    (compare_with_serial, every step including the cut-backs)."""
+    (compare_with_serial, every step including the cut-backs). R15.2: each
+    process holds only the slab facets within reach of its die nodes (none
+    without die nodes), gathered again as the die slides."""
     sets = ("Output/Write VTU=false", "Contact pair ironing/Slave=die.outer", "Contact pair ironing/Master=slab.top",
             "Body die/Refinement/Global refinements=2",
             "Boundary condition drive/Function=1.0*max(0, (t - 0.5)/0.5); -0.7*min(1, t/0.5)",
@@ -825,6 +831,17 @@ def case_ironing_mpi_matches_serial():
     split = re.search(r"the master surface's \d+ facets on (\d+) process", log)
     check(split is not None and int(split.group(1)) > 1, "the master surface is split between processes")
     check(serial[-1]["load_factor"] == 1.0, "the serial run reaches the end of the slide")
+    # R15.2: each process holds the slab's facets within reach of its die
+    # nodes, a process without die nodes none, and as the die slides the
+    # facets are gathered again around it.
+    held = re.search(r"slave nodes on (\d+) of (\d+) processes; the master surface's (\d+) facets .*"
+                     r"each process holds those within [0-9.e+-]+ of its slave nodes: (\d+) to (\d+)", log)
+    check(held is not None and int(held.group(1)) < int(held.group(2)) and int(held.group(4)) == 0 and
+          int(held.group(5)) < int(held.group(3)),
+          f"each process holds the master facets near its slave nodes only ({held.group(0) if held else 'no'})")
+    again = re.findall(r"master facets gathered again \(gather \d+; slave nodes and master moved by ([0-9.e+-]+)",
+                       log)
+    check(len(again) >= 2, f"the facets are gathered again as the die slides ({len(again)} times)")
     compare_with_serial("ironing", serial, parallel, s_out, p_out, "ironing")
 
 

@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <random>
+#include <set>
 #include <sstream>
 
 using namespace dealii;
@@ -647,6 +648,35 @@ TEST(MasterSurface, MirroredEndAtSymmetryPlane)
     }
   EXPECT_EQ(mirrored, 2u);
   EXPECT_EQ(smooth->get_pieces().size(), 2 * facets.size() + 1);
+}
+
+// R15.2: a piece's key (its facet's number in the whole surface and its
+// role there) names it whichever facets a process holds; on a chain with
+// mirrored ends and transitions every piece has its own key, and the key
+// finds the piece.
+TEST(MasterSurface, PieceKeysNameTheirPieces)
+{
+  std::string text = ball_on_block(2, 0.2, 1, "hard", "unsymmetric", ", sym");
+  text += "subsection Boundary condition sym\n  set Surface = ball.flat\n"
+          "  set Type = XSYMM\nend\n";
+  Fixture<2>  s(text, "keys.prm");
+  const auto  smooth = master_of<2>(s, "ball.curved", 0.2);
+  const auto &facets = smooth->get_facets();
+  for (unsigned int f = 0; f < facets.size(); ++f)
+    EXPECT_EQ(facets[f].key, f); // one process: the surface's own order
+  std::set<std::uint64_t> keys;
+  std::set<unsigned int>  roles;
+  for (unsigned int i = 0; i < smooth->get_pieces().size(); ++i)
+    {
+      const auto key = smooth->piece_key(i);
+      EXPECT_TRUE(keys.insert(key).second) << "piece " << i;
+      EXPECT_EQ(smooth->find_piece(key), static_cast<int>(i));
+      roles.insert(smooth->get_pieces()[i].role);
+    }
+  // The facets, their transitions and both mirrored ends.
+  EXPECT_EQ(roles, (std::set<unsigned int>{0, 1, 2, 3}));
+  EXPECT_EQ(smooth->find_piece(4 * facets.size()), -1);
+  EXPECT_EQ(smooth->n_facets_global(), facets.size());
 }
 
 // R1.4: 3D normal blending is continuous across edges and corners, equal
