@@ -615,6 +615,17 @@ TEST(MasterSurface, DeepPenetrationFoundWithTheSlaveRadius)
   EXPECT_NEAR(top->project(Point<2>(0.5, 0.99), 10.).gap, -0.01, 1e-13);
 }
 
+// The 2D ball on the block with XSYMM on the ball's flat top: the curved
+// surface's chain ends lie on a symmetry plane.
+static std::string
+ball_with_symmetric_top()
+{
+  std::string text = ball_on_block(2, 0.2, 1, "hard", "unsymmetric", ", sym");
+  text += "subsection Boundary condition sym\n  set Surface = ball.flat\n"
+          "  set Type = XSYMM\nend\n";
+  return text;
+}
+
 // R2.1: a master that ends on a symmetry plane x = 0.5 with XSYMM there is
 // smoothed against its mirror image; without the condition it is not.
 TEST(MasterSurface, MirroredEndAtSymmetryPlane)
@@ -623,10 +634,7 @@ TEST(MasterSurface, MirroredEndAtSymmetryPlane)
   // the block a left side symmetry condition and use the block's top+left?
   // Simpler: a tilted facet chain is the ball; put XSYMM on the ball's
   // flat top, whose end nodes are the curved surface's chain ends.
-  std::string text = ball_on_block(2, 0.2, 1, "hard", "unsymmetric", ", sym");
-  text += "subsection Boundary condition sym\n  set Surface = ball.flat\n"
-          "  set Type = XSYMM\nend\n";
-  Fixture<2>  s(text, "mirror.prm");
+  Fixture<2>  s(ball_with_symmetric_top(), "mirror.prm");
   const auto  smooth = master_of<2>(s, "ball.curved", 0.2);
   const auto &facets = smooth->get_facets();
   // Both chain ends lie on the flat top, which carries XSYMM: two mirrored
@@ -656,10 +664,7 @@ TEST(MasterSurface, MirroredEndAtSymmetryPlane)
 // finds the piece.
 TEST(MasterSurface, PieceKeysNameTheirPieces)
 {
-  std::string text = ball_on_block(2, 0.2, 1, "hard", "unsymmetric", ", sym");
-  text += "subsection Boundary condition sym\n  set Surface = ball.flat\n"
-          "  set Type = XSYMM\nend\n";
-  Fixture<2>  s(text, "keys.prm");
+  Fixture<2>  s(ball_with_symmetric_top(), "keys.prm");
   const auto  smooth = master_of<2>(s, "ball.curved", 0.2);
   const auto &facets = smooth->get_facets();
   for (unsigned int f = 0; f < facets.size(); ++f)
