@@ -273,8 +273,8 @@ namespace glide
                                          Utilities::MPI::max(slave_size, comm));
             pair.gather_reach  = 4. * size + 2. * surface->facet_size();
             pair.gather_margin = p.sliding == "finite" ? 4. * size : 0.;
-            const auto [region, wanted] = slave_region(pair, VectorType());
-            surface->gather_near(VectorType(), region, wanted);
+            surface->gather_near(VectorType(),
+                                 slave_region(pair, VectorType()));
             pair.gathered_at.assign(dim * pair.nodes.size(), 0.);
             pair.gathers = 1;
           }
@@ -477,27 +477,18 @@ namespace glide
   }
 
   template <int dim>
-  std::pair<BoundingBox<dim>, bool>
+  std::vector<BoundingBox<dim>>
   Contact<dim>::slave_region(const Pair &pair, const VectorType &U) const
   {
-    Point<dim> lo, hi;
-    for (unsigned int i = 0; i < pair.nodes.size(); ++i)
+    std::vector<Point<dim>> x;
+    for (const auto &node : pair.nodes)
       {
-        const auto &node = pair.nodes[i];
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            const double y = node.X[d] + (U.size() > 0 ? U[node.dofs[d]] : 0.);
-            lo[d]          = i == 0 ? y : std::min(lo[d], y);
-            hi[d]          = i == 0 ? y : std::max(hi[d], y);
-          }
+        x.push_back(node.X);
+        if (U.size() > 0)
+          for (unsigned int d = 0; d < dim; ++d)
+            x.back()[d] += U[node.dofs[d]];
       }
-    const double grow = pair.gather_margin + pair.gather_reach;
-    for (unsigned int d = 0; d < dim; ++d)
-      {
-        lo[d] -= grow;
-        hi[d] += grow;
-      }
-    return {BoundingBox<dim>(std::make_pair(lo, hi)), !pair.nodes.empty()};
+    return covering_boxes(x, pair.gather_margin + pair.gather_reach);
   }
 
   template <int dim>
@@ -532,8 +523,7 @@ namespace glide
         const double      moved = motion_since_gather(pair, U);
         if (moved <= 0.5 * pair.gather_margin)
           continue;
-        const auto [region, wanted] = slave_region(pair, U);
-        pair.formulation->regather(U, region, wanted);
+        pair.formulation->regather(U, slave_region(pair, U));
         for (unsigned int i = 0; i < pair.nodes.size(); ++i)
           for (unsigned int d = 0; d < dim; ++d)
             pair.gathered_at[dim * i + d] = U[pair.nodes[i].dofs[d]];

@@ -74,14 +74,14 @@ namespace glide
 
   template <int dim>
   void
-  Formulation<dim>::regather(const VectorType               &U,
-                             const dealii::BoundingBox<dim> &region,
-                             const bool                      wanted)
+  Formulation<dim>::regather(
+    const VectorType                            &U,
+    const std::vector<dealii::BoundingBox<dim>> &regions)
   {
     std::vector<std::uint64_t> old_keys;
     for (unsigned int i = 0; i < surface->get_pieces().size(); ++i)
       old_keys.push_back(surface->piece_key(i));
-    surface->gather_near(U, region, wanted);
+    surface->gather_near(U, regions);
     renumber_pieces(old_keys);
   }
 

@@ -489,19 +489,63 @@ namespace glide
   }
 
   template <int dim>
-  void
-  MasterSurface<dim>::gather_near(const VectorType       &U,
-                                  const BoundingBox<dim> &region,
-                                  const bool              wanted)
+  std::vector<BoundingBox<dim>>
+  covering_boxes(const std::vector<Point<dim>> &points, const double reach)
   {
-    // Every process's region: lower corner, upper corner, wanted.
-    std::vector<double> mine;
+    if (points.empty())
+      return {};
+    // The points binned into cubic cells, 16 along the longest side of
+    // their box (at least twice the reach): one box per occupied cell, the
+    // box of its points. An R-tree's nodes (extract_rtree_level()) balance
+    // the number of points, not the geometry: a node may join the end of
+    // one cluster to the start of another and span the gap between them.
+    Point<dim> lo = points[0], hi = points[0];
+    for (const auto &x : points)
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          lo[d] = std::min(lo[d], x[d]);
+          hi[d] = std::max(hi[d], x[d]);
+        }
+    double extent = 0.;
     for (unsigned int d = 0; d < dim; ++d)
-      mine.push_back(region.get_boundary_points().first[d]);
-    for (unsigned int d = 0; d < dim; ++d)
-      mine.push_back(region.get_boundary_points().second[d]);
-    mine.push_back(wanted ? 1. : 0.);
-    const auto regions = Utilities::MPI::all_gather(comm, mine);
+      extent = std::max(extent, hi[d] - lo[d]);
+    const double cell = std::max({2. * reach, extent / 16., 1e-300});
+    std::map<std::array<long, dim>, BoundingBox<dim>> cells;
+    for (const auto &x : points)
+      {
+        std::array<long, dim> key;
+        for (unsigned int d = 0; d < dim; ++d)
+          key[d] = static_cast<long>(std::floor((x[d] - lo[d]) / cell));
+        const auto it = cells.find(key);
+        if (it == cells.end())
+          cells.emplace(key, BoundingBox<dim>(std::make_pair(x, x)));
+        else
+          it->second.merge_with(BoundingBox<dim>(std::make_pair(x, x)));
+      }
+    std::vector<BoundingBox<dim>> boxes;
+    for (auto &[key, box] : cells)
+      {
+        box.extend(reach);
+        boxes.push_back(box);
+      }
+    return boxes;
+  }
+
+  template <int dim>
+  void
+  MasterSurface<dim>::gather_near(const VectorType                    &U,
+                                  const std::vector<BoundingBox<dim>> &mine)
+  {
+    // Every process's regions: lower corner, upper corner, per box.
+    std::vector<double> flat;
+    for (const auto &box : mine)
+      {
+        for (unsigned int d = 0; d < dim; ++d)
+          flat.push_back(box.get_boundary_points().first[d]);
+        for (unsigned int d = 0; d < dim; ++d)
+          flat.push_back(box.get_boundary_points().second[d]);
+      }
+    const auto regions = Utilities::MPI::all_gather(comm, flat);
 
     // Send each own facet whose current bounding box meets a region there.
     const unsigned int n_nodes =
@@ -526,9 +570,14 @@ namespace glide
         for (unsigned int r = 0; r < regions.size(); ++r)
           {
             const auto &g    = regions[r];
-            bool        meet = g[2 * dim] > 0.;
-            for (unsigned int d = 0; d < dim && meet; ++d)
-              meet = lo[d] <= g[dim + d] && g[d] <= hi[d];
+            bool        meet = false;
+            for (std::size_t k = 0; k + 2 * dim <= g.size() && !meet;
+                 k += 2 * dim)
+              {
+                meet = true;
+                for (unsigned int d = 0; d < dim && meet; ++d)
+                  meet = lo[d] <= g[k + dim + d] && g[k + d] <= hi[d];
+              }
             if (!meet)
               continue;
             reals[r].insert(reals[r].end(),
@@ -1829,4 +1878,8 @@ namespace glide
 
   template class MasterSurface<2>;
   template class MasterSurface<3>;
+  template std::vector<BoundingBox<2>>
+  covering_boxes(const std::vector<Point<2>> &, const double);
+  template std::vector<BoundingBox<3>>
+  covering_boxes(const std::vector<Point<3>> &, const double);
 } // namespace glide

@@ -150,11 +150,15 @@ namespace glide
            context.elasticity.get_mesh().surface(name, context.path + "/Slave"))
         ids.insert(id);
     // The slave facets, extracted (and oriented outwards) as a master
-    // surface is; no smoothing.
-    slave = std::make_unique<MasterSurface<dim>>(context.elasticity,
-                                                 ids,
-                                                 0.,
-                                                 context.path);
+    // surface is; no smoothing. Under MPI each process holds only the slave
+    // facets around its own slave nodes (setup()).
+    slave =
+      std::make_unique<MasterSurface<dim>>(context.elasticity,
+                                           ids,
+                                           0.,
+                                           context.path,
+                                           Utilities::MPI::n_mpi_processes(
+                                             context.comm) > 1);
   }
 
   template <int dim>
@@ -162,6 +166,31 @@ namespace glide
   Mortar<dim>::setup(const std::vector<SlaveNode<dim>> &nodes)
   {
     Formulation<dim>::setup(nodes);
+    if (Utilities::MPI::n_mpi_processes(this->context.comm) > 1)
+      {
+        // Distributed (R15.2, collective): the terms of node j need the
+        // slave facets at j and, for the averaged normals of their nodes,
+        // the facets at those nodes; all of them lie within one facet
+        // size of j in the reference configuration, and the slave
+        // surface's connectivity does not change, so one gather, with
+        // twice that reach, serves the whole run.
+        std::vector<Point<dim>> X;
+        for (const auto &node : nodes)
+          X.push_back(node.X);
+        const double reach = 2. * slave->facet_size();
+        slave->gather_near(VectorType(), covering_boxes(X, reach));
+        const unsigned int held   = slave->get_facets().size();
+        const auto         comm   = this->context.comm;
+        const unsigned int fewest = Utilities::MPI::min(held, comm),
+                           most   = Utilities::MPI::max(held, comm);
+        std::ostringstream text;
+        text << "contact pair '" << this->context.parameters.name
+             << "': the slave surface's " << slave->n_facets_global()
+             << " facets; each process holds those within " << reach
+             << " of its slave nodes: " << fewest << " to " << most;
+        if (Utilities::MPI::this_mpi_process(comm) == 0)
+          this->context.note(text.str());
+      }
     const auto &surface_nodes = slave->get_nodes();
     std::map<types::global_dof_index, unsigned int> by_dof;
     for (unsigned int i = 0; i < nodes.size(); ++i)

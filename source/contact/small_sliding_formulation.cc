@@ -441,10 +441,14 @@ namespace glide
                       symmetric[c].insert(cell_dofs[k[c]]);
                   }
     // Region nodes by x DoF: this process's slave nodes, then (under MPI)
-    // those of other processes that lie in its regions. Every process
-    // sends its slave nodes' DoFs and reference positions to all (O(slave
-    // surface) per process, like the gathered master surface), so that a
-    // region cut by the partition is the region of the serial run.
+    // those of other processes that lie in its regions. A region's nodes
+    // share a facet with its node, so they lie within the largest facet
+    // diameter of it, which is at most a node's mean facet size times its
+    // number of facets (below the size of its mass row); each process
+    // receives the slave nodes of the others within that reach (theirs) of
+    // the boxes around its own nodes (R15.2: O(own part) per process, not the
+    // whole slave surface), so that a region cut by the partition is the region
+    // of the serial run.
     std::map<types::global_dof_index, unsigned int> index;
     for (unsigned int i = 0; i < nodes.size(); ++i)
       index[nodes[i].dofs[0]] = i;
@@ -452,15 +456,46 @@ namespace glide
     neighbours.clear();
     if (Utilities::MPI::n_mpi_processes(comm) > 1 && !node_based)
       {
-        std::vector<double> packed; // DoFs (exact below 2^53), then X
+        // Every process's boxes around its nodes (covering_boxes(), lower
+        // and upper corners; none without slave nodes). Being a neighbour
+        // is mutual, so the sender grows them by the reach of its own node.
+        std::vector<Point<dim>> X;
         for (const auto &node : nodes)
-          {
-            for (const auto d : node.dofs)
-              packed.push_back(static_cast<double>(d));
+          X.push_back(node.X);
+        std::vector<double> flat;
+        for (const auto &box : covering_boxes(X, 0.))
+          for (const auto &corner : {box.get_boundary_points().first,
+                                     box.get_boundary_points().second})
             for (unsigned int d = 0; d < dim; ++d)
-              packed.push_back(node.X[d]);
-          }
-        for (const auto &part : Utilities::MPI::all_gather(comm, packed))
+              flat.push_back(corner[d]);
+        const auto         boxes = Utilities::MPI::all_gather(comm, flat);
+        const unsigned int me    = Utilities::MPI::this_mpi_process(comm);
+        std::map<unsigned int, std::vector<double>> packed; // DoFs, then X
+        for (unsigned int r = 0; r < boxes.size(); ++r)
+          if (r != me)
+            for (const auto &node : nodes)
+              {
+                const double reach  = node.size * node.mass.size();
+                bool         inside = false;
+                for (std::size_t k = 0;
+                     k + 2 * dim <= boxes[r].size() && !inside;
+                     k += 2 * dim)
+                  {
+                    inside = true;
+                    for (unsigned int d = 0; d < dim && inside; ++d)
+                      inside = boxes[r][k + d] - reach <= node.X[d] &&
+                               node.X[d] <= boxes[r][k + dim + d] + reach;
+                  }
+                if (!inside)
+                  continue;
+                auto &part = packed[r];
+                for (const auto d : node.dofs)
+                  part.push_back(static_cast<double>(d)); // exact below 2^53
+                for (unsigned int d = 0; d < dim; ++d)
+                  part.push_back(node.X[d]);
+              }
+        for (const auto &[rank, part] :
+             Utilities::MPI::some_to_some(comm, packed))
           for (std::size_t k = 0; k + 2 * dim <= part.size(); k += 2 * dim)
             {
               Neighbour n;
@@ -550,12 +585,21 @@ namespace glide
                                }) ?
                      1 :
                      0;
-        n_cut = Utilities::MPI::sum(n_cut, comm);
+        n_cut                       = Utilities::MPI::sum(n_cut, comm);
+        const unsigned int n_others = others.size();
+        const unsigned int n_all =
+          Utilities::MPI::sum(static_cast<unsigned int>(nodes.size()), comm);
+        const unsigned int fewest = Utilities::MPI::min(n_others, comm),
+                           most   = Utilities::MPI::max(n_others, comm);
         if (Utilities::MPI::this_mpi_process(comm) == 0)
-          this->context.note("contact pair '" + p.name +
-                             "': surface to surface: " + std::to_string(n_cut) +
-                             " averaging region(s) hold slave nodes of "
-                             "another process");
+          this->context.note(
+            "contact pair '" + p.name +
+            "': surface to surface: " + std::to_string(n_cut) +
+            " averaging region(s) hold slave nodes of another process; each "
+            "process reads " +
+            std::to_string(fewest) + " to " + std::to_string(most) +
+            " of the " + std::to_string(n_all) +
+            " slave nodes from the others");
       }
     n_node_based = Utilities::MPI::sum(n_node_based, comm);
     n_missed     = Utilities::MPI::sum(n_missed, comm);

@@ -722,6 +722,7 @@ def case_contact_amg_mpi_matches_serial():
               (int(split.group(2)) > 1 or int(split.group(4)) > 1),
               f"{label}: slave nodes or master facets on several processes "
               f"({split.group(0) if split else 'no'})")
+        check_slave_side_gathered(label, log)
         print(f"measured: {label}: GMRES iterations per step {[int(r['linear_iterations']) for r in parallel]}")
         compare_with_serial(label, serial, parallel, s_out, p_out, "hertz", rel=1e-7)
     # On 2 processes, 76 000 DoFs (a uniform block of 28^3 cells; the
@@ -743,7 +744,38 @@ def case_contact_amg_mpi_matches_serial():
     finally:
         ARGS.mpirun = saved
     check("on 2 process(es)" in log, "28^3 block: ran on two processes")
+    check_slave_side_gathered("mortar 3D, 28^3 block", log)
     compare_with_serial("mortar 3D, 28^3 block, 2 processes", serial, parallel, s_out, p_out, "hertz", rel=1e-7)
+
+
+def check_slave_side_gathered(what, log):
+    """R15.2 on the slave side: mortar's slave facets and surface to
+    surface's slave nodes of other processes are gathered within reach of
+    a process's own slave nodes only; the whole lists (held by every
+    process until 2026-12-04) fail these checks."""
+    split = re.search(r"(\d+) slave nodes on (\d+) of (\d+) processes", log)
+    if split is None:
+        return
+    n_on, n_processes = int(split.group(2)), int(split.group(3))
+    slave_held = re.search(r"the slave surface's (\d+) facets; each process holds those within \S+ of its "
+                           r"slave nodes: (\d+) to (\d+)", log)
+    if "mortar" in what:
+        # A process without slave nodes holds no slave facets; where the
+        # slave nodes are split, none holds them all.
+        check(slave_held is not None and
+              (n_on == n_processes or int(slave_held.group(2)) == 0) and
+              (n_on == 1 or int(slave_held.group(3)) < int(slave_held.group(1))),
+              f"{what}: each process holds the slave facets near its slave nodes only "
+              f"(slave nodes on {n_on} of {n_processes} processes; "
+              f"{slave_held.group(0) if slave_held else 'no such line in the log'})")
+    reads = re.search(r"each process reads (\d+) to (\d+) of the (\d+) slave nodes from the others", log)
+    for line in (slave_held, reads):
+        if line:
+            print(f"measured: {what}: slave nodes on {n_on} of {n_processes} processes; {line.group(0)}")
+    if "surface to surface" in what:
+        check(reads is not None and 2 * int(reads.group(2)) < int(reads.group(3)),
+              f"{what}: each process reads fewer than half the slave nodes from the others "
+              f"({reads.group(0) if reads else 'no such line in the log'})")
 
 
 def case_contact_deformable_mpi_matches_serial():
@@ -753,7 +785,9 @@ def case_contact_deformable_mpi_matches_serial():
     mortar (2D, 3D), small-sliding surface to surface (2D: averaging
     regions that hold slave nodes of two processes; 3D), against the serial
     run (compare_with_serial). Each process holds the master facets within
-    reach of its slave nodes (R15.2); the log says how the pair is split,
+    reach of its slave nodes (R15.2), and mortar's slave facets and surface
+    to surface's slave nodes of other processes within reach of its own
+    (fewer than all: the log's ranges); the log says how the pair is split,
     and the test requires the slave nodes or the master facets to be on
     several processes, so that the contact zone is cut by the partition."""
     scenes = [("hertz-2d-elastic.prm", "hertz", ()),
@@ -789,6 +823,7 @@ def case_contact_deformable_mpi_matches_serial():
         if held:
             print(f"measured: {what}: each process holds {held.group(2)} to {held.group(3)} "
                   f"of the master's {held.group(1)} facets")
+        check_slave_side_gathered(what, log)
         if "surface to surface" in what and int(split.group(1)) > 1:
             # Slave nodes on several processes: regions must straddle them.
             cut = re.search(r"surface to surface: (\d+) averaging region\(s\) hold slave nodes of another process", log)

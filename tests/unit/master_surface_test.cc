@@ -845,3 +845,39 @@ TEST(MasterSurface, BlendedNormalLiesInSymmetryPlanes)
         EXPECT_GT(largest_nx, 1e-3);
     }
 }
+
+// R15.2: the regions a process asks for cover each of its slave nodes with
+// the reach around it, and two clusters of nodes far apart (a partition
+// that wraps around a surface) do not ask for the space between them, as
+// one bounding box of all nodes did.
+TEST(MasterSurface, CoveringBoxesHoldEveryPointAndNotTheGapBetweenClusters)
+{
+  std::vector<Point<2>> points;
+  for (unsigned int i = 0; i < 40; ++i)
+    {
+      points.emplace_back(0.01 * i, 0.);       // x in [0, 0.39]
+      points.emplace_back(10. + 0.01 * i, 0.); // x in [10, 10.39]
+    }
+  const double reach = 0.05;
+  const auto   boxes = covering_boxes(points, reach);
+  ASSERT_FALSE(boxes.empty());
+  EXPECT_LE(boxes.size(), 17u * 17u); // 16 cells along the longest side
+  const auto covered = [&](const Point<2> &x) {
+    return std::any_of(boxes.begin(), boxes.end(), [&](const auto &b) {
+      return b.point_inside(x);
+    });
+  };
+  for (const auto &x : points)
+    for (const double dx : {-reach, 0., reach})
+      for (const double dy : {-reach, 0., reach})
+        EXPECT_TRUE(covered(x + Point<2>(dx, dy)))
+          << "reach around " << x << " not covered";
+  for (const double x : {1., 5., 9.})
+    EXPECT_FALSE(covered(Point<2>(x, 0.))) << "the gap at x = " << x;
+  EXPECT_TRUE(covering_boxes(std::vector<Point<2>>(), reach).empty());
+  // Few points (a tree of one level) still give covering boxes.
+  const auto one =
+    covering_boxes(std::vector<Point<3>>{Point<3>(1., 2., 3.)}, 0.5);
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_TRUE(one[0].point_inside(Point<3>(1.5, 1.5, 3.5)));
+}

@@ -314,10 +314,11 @@ namespace glide
     void
     update_read_ghosts();
 
-    /// The box of this process's slave nodes of @p pair at @p U (the
+    /// Boxes around this process's slave nodes of @p pair at @p U (the
     /// view(); empty: the reference positions), grown by gather_margin +
-    /// gather_reach: the master facets it needs; false where it has none.
-    std::pair<dealii::BoundingBox<dim>, bool>
+    /// gather_reach (covering_boxes()): the master facets it needs; none
+    /// where it has no slave nodes.
+    std::vector<dealii::BoundingBox<dim>>
     slave_region(const Pair &pair, const VectorType &U) const;
 
     /// Collective: the largest motion of a slave node of @p pair plus that

@@ -194,13 +194,12 @@ namespace glide
       return false;
     }
 
-    /// Collective: gather the master facets within @p region again
+    /// Collective: gather the master facets within @p regions again
     /// (MasterSurface::gather_near(); @p U with the DoFs of read_dofs()),
     /// and carry whatever refers to the old pieces over to the new ones.
     void
-    regather(const VectorType               &U,
-             const dealii::BoundingBox<dim> &region,
-             const bool                      wanted);
+    regather(const VectorType                            &U,
+             const std::vector<dealii::BoundingBox<dim>> &regions);
 
     /// End all holds.
     virtual void

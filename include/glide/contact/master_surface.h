@@ -28,6 +28,17 @@ namespace glide
     const typename dealii::DoFHandler<dim>::active_cell_iterator &cell,
     const unsigned int                                            f);
 
+  /// Boxes that cover @p points grown by @p reach in every direction: one
+  /// per occupied cell of a grid of 16 cells along the longest side of the
+  /// points' box (cells at least 2 @p reach wide), the box of the points in
+  /// it, so that the points of one process that lie far apart (a partition
+  /// that wraps around a surface) do not ask for everything between them.
+  /// Empty if there are no points.
+  template <int dim>
+  std::vector<dealii::BoundingBox<dim>>
+  covering_boxes(const std::vector<dealii::Point<dim>> &points,
+                 const double                           reach);
+
   /**
    * The master surface of a contact pair on a deformable body (issue 3,
    * R1-R3): its facets, extracted from the boundary faces of degree 1 or 2
@@ -184,15 +195,15 @@ namespace glide
                   const bool distributed = false);
 
     /// Distributed surfaces (collective): hold the facets of every process
-    /// whose current bounding box meets @p region, the box this process
-    /// needs (if @p wanted; else none), in the order of their keys, with their
-    /// smoothing rebuilt. @p U must hold the DoFs of own_dofs(). Positions
-    /// are reset to the reference ones and version() changes: the caller
-    /// moves the surface again, after importing the new nodes' DoFs.
+    /// whose current bounding box meets one of @p regions, the boxes this
+    /// process needs (none if empty; covering_boxes()), in the order of
+    /// their keys, with their smoothing rebuilt. @p U must hold the DoFs of
+    /// own_dofs(). Positions are reset to the reference ones and version()
+    /// changes: the caller moves the surface again, after importing the new
+    /// nodes' DoFs.
     void
-    gather_near(const VectorType               &U,
-                const dealii::BoundingBox<dim> &region,
-                const bool                      wanted);
+    gather_near(const VectorType                            &U,
+                const std::vector<dealii::BoundingBox<dim>> &regions);
 
     /// DoFs of the nodes of this process's own facets (distributed
     /// surfaces; empty otherwise).
