@@ -274,6 +274,25 @@ namespace glide
               " switched between open and closed more than " +
               std::to_string(ActiveSetMonitor<dim>::maximum_switches) +
               " times in this load step");
+          // Full Newton steps that have raised the scaled residual more
+          // than 100 times above the solve's first one have left the
+          // region where the active set they predict is of use: end the
+          // attempt, the next one takes the line search (which cannot raise
+          // it) from the step's start. A stiff slave on a soft master went
+          // from 1.5e-4 up to 2.7 over 9 iterations, until the cycling
+          // check ended them, where the line search needs 3; the first
+          // iteration of a step whose active set changes may raise it
+          // 20 times and still converge (doc/theory/nonlinear-solution.md).
+          constexpr double divergence_factor = 100.;
+          if (first_residual > 0. &&
+              last_residual > divergence_factor * first_residual)
+            {
+              std::ostringstream text;
+              text << "full Newton steps diverge: scaled residual "
+                   << last_residual << ", more than " << divergence_factor
+                   << " times the attempt's first (" << first_residual << ")";
+              throw std::runtime_error(text.str());
+            }
           if (contact.needs_new_pattern(u))
             rebuild_pattern(); // a slave node slid out of the pattern
         }

@@ -1500,23 +1500,9 @@ def robustness_cases():
 # measured numbers (max / mean iterations per step at levels 0, 1) and the
 # reason; the test still requires them to converge, and prints what they
 # take. Every other cell must meet the targets.
-ROBUSTNESS_EXCEPTIONS = {
-    # A slave 1e6 times stiffer than its master (the role assignment the
-    # usual advice warns against, and glide's set-up warning too): the
-    # master's nodes are not constrained, and the soft master passes
-    # through the stiff slave between its constrained nodes. In these
-    # meshes the cylinder's surface is also 2.5 times finer than the
-    # block's at the contact, more slave constraints than the master's
-    # nodes can follow: the converged active sets are not contiguous, and
-    # the nodes at their edges switch back and forth (level 1, 2026-12-04:
-    # 3, 14, 3, 14 with f = 0.2, 3, 13, 2, 11 with small sliding; p0 1.75
-    # to 1.77 times Hertz's). With the block refined until its surface is
-    # finer than the cylinder's, the same cell takes 4, 3, 4, 4 at level 2
-    # (doc/theory/nonlinear-solution.md).
-    ("nts-finite-f0.2", "ratio 1e6, stiff slave"),
-    ("nts-small", "ratio 1e6, stiff slave"),
-    ("sts-small", "ratio 1e6, stiff slave"),
-}
+# None since 2026-12-04: the stiff slave's cells meet the targets since
+# full Newton steps that diverge are stopped (REFINEMENT_EXCEPTIONS below).
+ROBUSTNESS_EXCEPTIONS = set()
 
 
 # Cells that meet the per-step targets but not "refinement adds at most 2
@@ -1524,7 +1510,21 @@ ROBUSTNESS_EXCEPTIONS = {
 # finer cylinder as slave (the wrong role for mortar, doc/theory/mortar.md:
 # its multipliers oscillate, p0 1.92-1.93 times Hertz's): largest count 3
 # at level 0, 6 at level 1 (second step; 2026-12-03).
-REFINEMENT_EXCEPTIONS = {("mortar", "ratio 1e6, stiff slave")}
+#
+# A slave 1e6 times stiffer than its master (the role assignment the usual
+# advice warns against, and glide's set-up warning too): the master's nodes
+# are not constrained, and the soft master passes through the stiff slave
+# between its constrained nodes; the cylinder's surface is also 2.5 times
+# finer than the block's at the contact. The converged active sets are not
+# contiguous, and in the even steps of level 1 the full Newton steps
+# diverge until the solve stops them (100 times the first residual) and
+# the line search finishes: 3 at level 0, up to 9 at level 1 (2026-12-04;
+# 3, 14, 3, 14 before the divergence stop, when the cycling check ended
+# them after 9 iterations). They meet the per-step targets.
+REFINEMENT_EXCEPTIONS = {("mortar", "ratio 1e6, stiff slave"),
+                         ("nts-finite-f0.2", "ratio 1e6, stiff slave"),
+                         ("nts-small", "ratio 1e6, stiff slave"),
+                         ("sts-small", "ratio 1e6, stiff slave")}
 
 
 def case_robustness_matrix():
