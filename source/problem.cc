@@ -316,6 +316,17 @@ namespace glide
       TimerOutput::Scope s(timer, "linear solver: solve");
       const unsigned int n =
         linear_solver.solve(rhs, dx, scene.linear_solver.relative_tolerance);
+      if (linear_solver.last_inexact_reduction() > 0.)
+        pcout << "    linear solver: GMRES "
+              << (linear_solver.last_inexact_stalled() ?
+                    "stalled after " :
+                    "reached its iteration limit, ")
+              << n << " iterations, with the residual reduced to "
+              << scientific(linear_solver.last_inexact_reduction())
+              << " of its start (tolerance "
+              << scientific(scene.linear_solver.relative_tolerance)
+              << "); its iterate is taken as an inexact Newton step"
+              << std::endl;
       elasticity.update_constraints().distribute(dx);
       return n;
     };

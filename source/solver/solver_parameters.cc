@@ -91,7 +91,13 @@ namespace glide
     prm.declare_entry("Maximum iterations",
                       "2000",
                       Patterns::Integer(1),
-                      "Krylov iterations before the linear solve fails.");
+                      "Krylov iterations before the linear solve stops. "
+                      "GMRES also stops where it stalls (the residual falls "
+                      "by less than a tenth over 200 iterations). A solve "
+                      "that stopped after reducing the residual to 1e-3 of "
+                      "its start or less is taken as an inexact Newton step "
+                      "(the log says so; Newton's own tolerance decides "
+                      "convergence); otherwise the Newton step fails.");
     prm.leave_subsection();
   }
 

@@ -1035,6 +1035,46 @@ def case_amg_matches_direct():
           "E x 1e9: reaction x 1e9")
 
 
+
+def case_amg_inexact_newton_steps():
+    """P3.3, R16.2: GMRES that stops above its tolerance (at its iteration
+    limit, or stalled) after cutting the residual to 1e-3 of its start or
+    less gives an inexact Newton step, which the Newton iteration takes
+    (its own residual test decides convergence); above that, the step fails
+    with a message that names the reduction reached and what to change.
+    The 3D neo-Hookean block of case_amg_matches_direct, 24 x 12 x 12 cells
+    (about 18 GMRES iterations per solve): with 'Maximum iterations = 10'
+    every solve stops at the limit (measured: reductions of 1e-4 to 1e-5),
+    and the answer is the direct solver's, in the same Newton iterations
+    (inexact Newton with a forcing term of 1e-4 converges as fast here);
+    with 2 iterations (a reduction of about 0.4) the run fails with exit
+    status 2. Before, any solve above the tolerance failed the Newton step:
+    the 2D elastic Hertz scene with AMG stalled at 3e-8 against 1e-8 in its
+    last Newton iteration and was cut back to the limit."""
+    sets = ["Dimension=3", "Analysis type=3d", "Body block/Block/Lower corner=0, 0, 0",
+            "Body block/Block/Upper corner=2, 1, 1", "Body block/Block/Subdivisions=24, 12, 12",
+            "Boundary condition load/Function=t; -5*t; 0", "Discretization/Geometric nonlinearity=true",
+            "Output/Write VTU=false"]
+    direct, _, _ = run(scene("block.prm"), *sets, "Linear solver/Type=direct", name="direct")
+    inexact, log, _ = run(scene("block.prm"), *sets, "Linear solver/Type=amg",
+                          "Linear solver/Maximum iterations=10", name="inexact")
+    taken = re.findall(r"GMRES reached its iteration limit, 10 iterations, with the residual reduced to "
+                       r"([0-9.e+-]+) of its start", log)
+    check(len(taken) == int(inexact[-1]["kinsol_iterations"]),
+          f"every Newton step was an inexact GMRES solve, and the log says so ({len(taken)} notes)")
+    check(all(1e-8 < float(x) <= 1e-3 for x in taken), f"reductions between 1e-8 and 1e-3: {taken}")
+    check(inexact[-1]["residual"] <= 1e-10, "Newton converged to its tolerance")
+    close(inexact[-1]["reaction_bottom_y"], direct[-1]["reaction_bottom_y"], 1e-8, "the direct solver's reaction")
+    check(inexact[-1]["kinsol_iterations"] == direct[-1]["kinsol_iterations"],
+          f"the direct solver's Newton iterations ({int(direct[-1]['kinsol_iterations'])})")
+    _, log, _ = run(scene("block.prm"), *sets, "Linear solver/Type=amg", "Linear solver/Maximum iterations=2",
+                    "Load stepping/Maximum cut-backs=1", name="too-few", expect_status=2)
+    m = re.search(r"GMRES with AMG\) did not converge \(stopped after 2 iterations\): it reduced the residual "
+                  r"to ([0-9.e+-]+) of its start, against the tolerance 1.00e-08 \(raise 'Linear solver/Maximum "
+                  r"iterations', or use 'Linear solver/Type = direct'\)", log)
+    check(m is not None and float(m.group(1)) > 1e-3,
+          "too few GMRES iterations: the step fails, naming the reduction reached and the parameters")
+
 def case_vtu_fields():
     """P5.2: the VTU files open with VTK's own reader and hold the fields
     ParaView users need, with the right values: the top of the default-like

@@ -3,6 +3,7 @@
 #include <glide/solver/multiplier_condensation.h>
 #include <glide/solver/solver_parameters.h>
 
+#include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
@@ -19,6 +20,37 @@ class Amesos_BaseSolver;
 
 namespace glide
 {
+  /**
+   * GMRES's stopping test, which also ends the solve (as a failure, with
+   * stalled() set) once the residual has fallen by less than a tenth over
+   * the last 200 iterations: restarted GMRES that stalls above its
+   * tolerance (a nearly singular Jacobian) otherwise runs to the iteration
+   * limit, up to 2000 iterations of no use. LinearSolver::solve() decides
+   * what its last iterate is worth.
+   */
+  class StallingControl : public dealii::SolverControl
+  {
+  public:
+    using dealii::SolverControl::SolverControl;
+
+    State
+    check(const unsigned int step, const double value) override;
+
+    /// Whether the last solve ended by stalling.
+    bool
+    stalled() const
+    {
+      return has_stalled;
+    }
+
+    /// Iterations over which the residual must fall by a tenth.
+    static constexpr unsigned int window = 200;
+
+  private:
+    bool                has_stalled = false;
+    std::vector<double> history;
+  };
+
   /**
    * The linear solver inside each Newton iteration (P3.3): a sparse direct
    * solver (Amesos MUMPS or KLU; both accept unsymmetric matrices and
@@ -82,7 +114,8 @@ namespace glide
 
     /// Solve matrix * x = b to @p relative_tolerance (ignored by the direct
     /// solver); returns the number of Krylov iterations (1 for direct).
-    /// Throws std::runtime_error if the solver fails.
+    /// Throws std::runtime_error if the solver fails (for GMRES: stops at
+    /// its iteration limit above inexact_limit).
     unsigned int
     solve(const dealii::TrilinosWrappers::MPI::Vector &b,
           dealii::TrilinosWrappers::MPI::Vector       &x,
@@ -91,6 +124,28 @@ namespace glide
     /// "direct (MUMPS)", "AMG-GMRES", ... for the log.
     std::string
     description() const;
+
+    /// GMRES that stalls (the residual falls by less than a tenth over 200
+    /// iterations) or reaches its iteration limit after it has reduced the
+    /// residual to this fraction of its start: solve() then returns its
+    /// last iterate as an inexact Newton step instead of failing.
+    static constexpr double inexact_limit = 1e-3;
+
+    /// The residual reduction of the last solve() if it was such an inexact
+    /// step, 0 otherwise.
+    double
+    last_inexact_reduction() const
+    {
+      return last_inexact;
+    }
+
+    /// Whether that inexact solve stalled (rather than reaching the
+    /// iteration limit).
+    bool
+    last_inexact_stalled() const
+    {
+      return last_stalled;
+    }
 
   private:
     const LinearSolverParameters                  parameters;
@@ -109,5 +164,7 @@ namespace glide
     std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> amg;
     std::unique_ptr<Epetra_MultiVector>                        null_space;
     std::unique_ptr<MultiplierCondensation>                    condensation;
+    double last_inexact = 0.;
+    bool   last_stalled = false;
   };
 } // namespace glide
