@@ -8,7 +8,9 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
+#include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/full_matrix.h>
 
 #include <chrono>
@@ -65,6 +67,91 @@ namespace glide
     , elasticity(elasticity)
     , comm(comm)
   {}
+
+  template <int dim>
+  void
+  Contact<dim>::merge_coincident_nodes(
+    std::map<types::global_dof_index, SlaveNode<dim>> &found,
+    std::map<types::global_dof_index, unsigned int>   &n_facets) const
+  {
+    // Quadratic elements on a locally refined slave surface (3D): the
+    // vertex of the fine faces at the midpoint of a coarse face's edge (or
+    // at its centre) is a hanging node whose DoFs are constrained to equal
+    // the coarse face's DoFs there (x_i = 1.0 x_j). Both would be slave
+    // nodes at one point with the same gap: once both close, the Newton
+    // system has two identical constraint rows and is singular (the 3D
+    // elastic Hertz scene with degree 2: a full Newton step raised the
+    // scaled residual from 8e-4 to 378 in the multiplier of such a node,
+    // the line search could not move, and the run took 8 cut-backs). The
+    // hanging node is merged into the other: one node, one multiplier,
+    // with the tributary area, facets and surface mass of both. Degree 1
+    // has no such nodes (a hanging vertex is a mean of two or four nodes,
+    // a point of its own), nor has 2D (a hanging node is never on the
+    // boundary). The hanging-node constraints alone decide (the Newton
+    // system's, which add the boundary conditions, are built after the
+    // contact pairs).
+    const auto &dof_handler = elasticity.get_dof_handler();
+    IndexSet    relevant;
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
+    AffineConstraints<double> constraints(relevant);
+    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+    constraints.close();
+    std::map<types::global_dof_index, types::global_dof_index> node_of_dof;
+    for (const auto &[key, node] : found)
+      for (const auto d : node.dofs)
+        node_of_dof[d] = key;
+    std::map<types::global_dof_index, types::global_dof_index> alias;
+    for (const auto &[key, node] : found)
+      {
+        auto target = numbers::invalid_dof_index;
+        bool merge  = true;
+        for (unsigned int c = 0; c < dim && merge; ++c)
+          {
+            const auto d = node.dofs[c];
+            merge        = constraints.is_identity_constrained(d);
+            if (!merge)
+              break;
+            const auto other =
+              (*constraints.get_constraint_entries(d))[0].first;
+            const auto it = node_of_dof.find(other);
+            merge =
+              it != node_of_dof.end() && it->second != key &&
+              found.at(it->second).dofs[c] == other &&
+              (target == numbers::invalid_dof_index || target == it->second);
+            if (merge)
+              target = it->second;
+          }
+        if (!merge)
+          continue;
+        const auto  &other = found.at(target);
+        const double size =
+          std::max(node.size / std::max(1u, n_facets.at(key)),
+                   other.size / std::max(1u, n_facets.at(target)));
+        if (node.X.distance(other.X) <= 1e-8 * size)
+          alias[key] = target;
+      }
+    for (const auto &[key, target] : alias)
+      {
+        auto       &into = found.at(target);
+        const auto &from = found.at(key);
+        into.area += from.area;
+        into.size += from.size;
+        into.normal += from.normal;
+        for (const auto &[b, m] : from.mass)
+          into.mass[b] += m;
+        n_facets[target] += n_facets[key];
+        found.erase(key);
+        n_facets.erase(key);
+      }
+    if (!alias.empty())
+      for (auto &[key, node] : found)
+        for (const auto &[hanging, target] : alias)
+          if (const auto it = node.mass.find(hanging); it != node.mass.end())
+            {
+              node.mass[target] += it->second;
+              node.mass.erase(it);
+            }
+  }
 
   template <int dim>
   std::vector<SlaveNode<dim>>
@@ -190,6 +277,8 @@ namespace glide
           }
       }
     slave_modulus = Utilities::MPI::min(slave_modulus, comm);
+    if (!node_based)
+      merge_coincident_nodes(found, n_facets);
     std::vector<SlaveNode<dim>> nodes;
     for (auto &[dof, node] : found)
       if (owned.is_element(dof))

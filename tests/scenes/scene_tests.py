@@ -2145,6 +2145,37 @@ def case_hertz_3d_deformable_master():
     close(p0h, p0, 0.2, "peak pressure against Hertz")
 
 
+
+def case_hertz_3d_quadratic_refined_slave():
+    """R16.2 (degree 2 that converges): parameters/hertz-3d-elastic.prm with
+    'Element degree = 2'. The block's top (the slave) is locally refined, and
+    with quadratic elements the fine faces' vertex at the midpoint of a
+    coarse face's edge is a hanging node whose DoFs equal the coarse face's
+    there: two slave nodes at one point, with the same gap. Once both closed
+    (load factor 1) the Newton system had two identical constraint rows: a
+    full Newton step raised the scaled residual from 8e-4 to 378 and the
+    run needed 8 cut-backs (250 s). Such nodes are merged
+    (Contact::merge_coincident_nodes): every slave node is at a point of its
+    own, the run takes 3 iterations per step without cut-back (measured: 3,
+    3, 3, 3; 25 s), the block's support balances the contact force, and the
+    same answer comes from small sliding (which reads the merged surface
+    masses) within 2 % in force."""
+    rows, log, out = run(scene_file("hertz-3d-elastic.prm"), "Output/Write VTU=false",
+                         "Discretization/Element degree=2", name="q2")
+    nodes = contact_nodes(out, "hertz")
+    points = {(round(n["X"], 12), round(n["Y"], 12), round(n["Z"], 12)) for n in nodes}
+    check(len(points) == len(nodes), f"{len(nodes)} slave nodes at {len(points)} distinct points")
+    for r in rows:
+        check(r["cut_backs"] == 0, f"no cut-back at t={r['load_factor']}")
+        check(r["kinsol_iterations"] <= 5, f"{int(r['kinsol_iterations'])} iterations at t={r['load_factor']}")
+        close(r["reaction_ground_y"], -r["contact_hertz_force_y"], 1e-9, f"balance at t={r['load_factor']}")
+    check(rows[-1]["load_factor"] == 1.0, "reaches load factor 1")
+    small, _, _ = run(scene_file("hertz-3d-elastic.prm"), "Output/Write VTU=false", "Discretization/Element degree=2",
+                      "Contact pair hertz/Sliding=small", name="q2-small")
+    check(all(r["cut_backs"] == 0 for r in small), "small sliding: no cut-back")
+    close(small[-1]["contact_hertz_force_y"], rows[-1]["contact_hertz_force_y"], 0.02,
+          "small sliding: the same contact force")
+
 def perturbed_patch_inp_3d(path, n_lower, n_upper, seed, amplitude=0.2, rectangles=False):
     """An Abaqus file (C3D8) with the two blocks of
     tests/scenes/patch-test-3d.prm (lower [0,1] x [0,0.5] x [0,1] with

@@ -284,6 +284,14 @@ namespace glide
       std::unique_ptr<ContactEnforcement<dim>> enforcement;
     };
 
+    /// Merge slave nodes that are one point of the mesh: a hanging node
+    /// of quadratic elements whose DoFs equal another slave node's
+    /// (find_slave_nodes()).
+    void
+    merge_coincident_nodes(
+      std::map<dealii::types::global_dof_index, SlaveNode<dim>> &found,
+      std::map<dealii::types::global_dof_index, unsigned int> &n_facets) const;
+
     /// Slave nodes of pair @p p (parameters) with their areas, sizes and
     /// normals, locally owned ones only; @p slave_modulus gets the smallest
     /// Young's modulus of the slave bodies.
