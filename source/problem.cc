@@ -306,6 +306,23 @@ namespace glide
         }
       TimerOutput::Scope s(timer, "linear solver: setup");
       linear_solver.initialize(jacobian, modes);
+      // AMG chosen, but this Jacobian's multipliers could not be
+      // eliminated: noted when that starts and when it ends.
+      if (const bool fallback = !linear_solver.fallback_reason().empty();
+          fallback != direct_fallback)
+        {
+          direct_fallback = fallback;
+          if (fallback)
+            pcout << "    linear solver: the direct solver, not AMG, from "
+                     "this Jacobian on: "
+                  << linear_solver.fallback_reason()
+                  << ", so the contact multipliers cannot be eliminated"
+                  << std::endl;
+          else
+            pcout << "    linear solver: AMG again (the contact multipliers "
+                     "can be eliminated)"
+                  << std::endl;
+        }
       // AMG on the condensed system keeps what it needs of the Jacobian:
       // its memory (a third of a 3D scene's peak) goes back until the next
       // set-up.

@@ -100,36 +100,42 @@ namespace glide
   } // namespace
 
   void
+  LinearSolver::factorize(const TrilinosWrappers::SparseMatrix &A)
+  {
+    const Epetra_CrsMatrix &M = A.trilinos_matrix();
+    // A new matrix object or pattern (a caller that re-initializes the
+    // matrix calls clear() first; the checks are a second guard):
+    // ordering and symbolic analysis anew.
+    if (!direct || factored != &M ||
+        factored_entries != static_cast<long long>(M.NumGlobalNonzeros64()))
+      {
+        direct.reset();
+        direct_problem = std::make_unique<Epetra_LinearProblem>();
+        direct_problem->SetOperator(const_cast<Epetra_CrsMatrix *>(&M));
+        Amesos            factory;
+        const std::string name =
+          parameters.direct_solver == "MUMPS" ? "Amesos_Mumps" : "Amesos_Klu";
+        direct.reset(factory.Create(name.c_str(), *direct_problem));
+        if (!direct)
+          throw std::runtime_error("the direct solver " + name +
+                                   " is not available in Trilinos");
+        check_amesos(direct->SymbolicFactorization(), "symbolic");
+        factored         = &M;
+        factored_entries = M.NumGlobalNonzeros64();
+      }
+    check_amesos(direct->NumericFactorization(), "numeric");
+  }
+
+  void
   LinearSolver::initialize(
     const TrilinosWrappers::SparseMatrix             &A,
     const std::vector<TrilinosWrappers::MPI::Vector> &modes)
   {
     matrix = &A;
+    fallback.clear();
     if (kind == "direct")
       {
-        const Epetra_CrsMatrix &M = A.trilinos_matrix();
-        // A new matrix object or pattern (a caller that re-initializes the
-        // matrix calls clear() first; the checks are a second guard):
-        // ordering and symbolic analysis anew.
-        if (!direct || factored != &M ||
-            factored_entries != static_cast<long long>(M.NumGlobalNonzeros64()))
-          {
-            direct.reset();
-            direct_problem = std::make_unique<Epetra_LinearProblem>();
-            direct_problem->SetOperator(const_cast<Epetra_CrsMatrix *>(&M));
-            Amesos            factory;
-            const std::string name = parameters.direct_solver == "MUMPS" ?
-                                       "Amesos_Mumps" :
-                                       "Amesos_Klu";
-            direct.reset(factory.Create(name.c_str(), *direct_problem));
-            if (!direct)
-              throw std::runtime_error("the direct solver " + name +
-                                       " is not available in Trilinos");
-            check_amesos(direct->SymbolicFactorization(), "symbolic");
-            factored         = &M;
-            factored_entries = M.NumGlobalNonzeros64();
-          }
-        check_amesos(direct->NumericFactorization(), "numeric");
+        factorize(A);
         return;
       }
 
@@ -139,9 +145,25 @@ namespace glide
     amg.reset();
     null_space.reset();
     // Hard contact: AMG works on the displacement system that remains
-    // once the multipliers are eliminated.
+    // once the multipliers are eliminated. Where a Jacobian's multipliers
+    // cannot be (a hanging slave node in contact), that Jacobian goes to
+    // the direct solver; the next one tries the elimination again.
     if (condensation)
-      condensation->condense(A);
+      try
+        {
+          condensation->condense(A);
+        }
+      catch (const MultiplierCondensation::NotCondensable &e)
+        {
+          fallback = e.what();
+          factorize(A);
+          return;
+        }
+    // The factorization of an earlier fallback refers to a matrix the
+    // caller may now release.
+    direct.reset();
+    direct_problem.reset();
+    factored = nullptr;
     const Epetra_RowMatrix &M =
       condensation ?
         static_cast<const Epetra_RowMatrix &>(condensation->matrix()) :
@@ -185,7 +207,9 @@ namespace glide
                       TrilinosWrappers::MPI::Vector       &x,
                       const double                         relative_tolerance)
   {
-    if (kind == "direct")
+    last_inexact = 0.;
+    last_stalled = false;
+    if (kind == "direct" || !fallback.empty())
       {
         direct_problem->SetLHS(&x.trilinos_vector());
         direct_problem->SetRHS(const_cast<Epetra_MultiVector *>(

@@ -289,6 +289,7 @@ namespace glide
     s.b_norm2 = 0.;
     s.frame.clear();
     s.scale = 1.;
+    s.foreign.assign(block.dofs.size(), {});
     for (unsigned int l = 0; l < block.dofs.size(); ++l)
       {
         row_of_j(block.dofs[l], n, values, columns);
@@ -296,17 +297,18 @@ namespace glide
           if (columns[e] == m)
             s.b[l] = values[e];
           else if (columns[e] >= n_u && values[e] != 0.)
-            throw std::logic_error(
-              "MultiplierCondensation: a slave node's rows hold the "
-              "force of another node's multiplier");
+            // The force of a hanging slave node constrained to this one
+            // (checked to be open once all states are known).
+            s.foreign[l].emplace_back(columns[e] - n_u, values[e]);
         s.b_norm2 += s.b[l] * s.b[l];
       }
     if (!s.closed)
       return;
     if (s.b_norm2 == 0.)
-      throw std::runtime_error(
-        "a closed slave node whose displacements are all constrained "
-        "cannot be condensed; use 'Linear solver/Type = direct'");
+      throw NotCondensable(
+        "a slave node in contact has no rows of its own (a hanging node of "
+        "a refined slave surface, or a node whose displacements are all "
+        "prescribed)");
     std::vector<double> normal(s.b);
     for (auto &v : normal)
       v /= std::sqrt(s.b_norm2);
@@ -349,7 +351,10 @@ namespace glide
   void
   MultiplierCondensation::share_states()
   {
-    // Packed per block: closed, E_jj, scale, |b|^2, b, frame.
+    // Packed per block: closed, E_jj, scale, |b|^2, b, and if closed the
+    // frame and, per DoF, the number of foreign entries and the entries
+    // (block, value): a master row that holds a closed multiplier reads
+    // them (condense_rhs()).
     std::vector<double> packed;
     for (unsigned int j = first_own; j < end_own; ++j)
       {
@@ -359,8 +364,16 @@ namespace glide
           {s.closed ? 1. : 0., s.open_diagonal, s.scale, s.b_norm2});
         packed.insert(packed.end(), s.b.begin(), s.b.end());
         if (s.closed)
-          for (const auto &row : s.frame)
-            packed.insert(packed.end(), row.begin(), row.end());
+          {
+            for (const auto &row : s.frame)
+              packed.insert(packed.end(), row.begin(), row.end());
+            for (const auto &entries : s.foreign)
+              {
+                packed.push_back(entries.size());
+                for (const auto &[k, value] : entries)
+                  packed.insert(packed.end(), {double(k), value});
+              }
+          }
       }
     const auto   all  = Utilities::MPI::all_gather(comm, packed);
     unsigned int j    = 0;
@@ -383,10 +396,20 @@ namespace glide
             s.b.assign(all[p].begin() + i + 4, all[p].begin() + i + 4 + d);
             i += 4 + d;
             s.frame.clear();
+            s.foreign.assign(d, {});
             if (s.closed)
-              for (unsigned int l = 0; l < d; ++l, i += d)
-                s.frame.emplace_back(all[p].begin() + i,
-                                     all[p].begin() + i + d);
+              {
+                for (unsigned int l = 0; l < d; ++l, i += d)
+                  s.frame.emplace_back(all[p].begin() + i,
+                                       all[p].begin() + i + d);
+                for (unsigned int l = 0; l < d; ++l)
+                  {
+                    const auto count = static_cast<unsigned int>(all[p][i++]);
+                    for (unsigned int e = 0; e < count; ++e, i += 2)
+                      s.foreign[l].emplace_back(
+                        static_cast<unsigned int>(all[p][i]), all[p][i + 1]);
+                  }
+              }
           }
       }
   }
@@ -442,24 +465,54 @@ namespace glide
   {
     J = &J_in;
     remote.reset();
+    // Collective: the first failure, as NotCondensable if any process's
+    // was one (every process then takes the same way on).
     std::string failure;
+    bool        not_condensable = false;
+    const auto  fail_together   = [&]() {
+      if (parallel)
+        not_condensable =
+          Utilities::MPI::max(not_condensable ? 1 : 0, comm) > 0;
+      const std::string message =
+        parallel ? first_failure_on_any_process(failure, comm) : failure;
+      if (message.empty())
+        return;
+      J = nullptr;
+      if (not_condensable)
+        throw NotCondensable(message);
+      throw std::runtime_error(message);
+    };
     try
       {
         for (unsigned int j = first_own; j < end_own; ++j)
           compute_state(j);
       }
+    catch (const NotCondensable &e)
+      {
+        failure         = e.what();
+        not_condensable = true;
+      }
     catch (const std::exception &e)
       {
         failure = e.what();
       }
+    fail_together();
     if (parallel)
-      {
-        throw_first_failure<std::runtime_error>(failure, comm);
-        share_states();
-        import_rows();
-      }
-    else if (!failure.empty())
-      throw std::runtime_error(failure);
+      share_states();
+    // A hanging slave node's force in its parents' rows: known while it is
+    // open; a closed one (its own rows empty) was refused above.
+    for (unsigned int j = first_own; j < end_own && failure.empty(); ++j)
+      for (const auto &entries : states[j].foreign)
+        for (const auto &[k, value] : entries)
+          if (states[k].closed)
+            {
+              failure         = "a slave node's rows hold the force of another "
+                                "closed slave node";
+              not_condensable = true;
+            }
+    fail_together();
+    if (parallel)
+      import_rows();
 
     condensed.reset(); // before its successor is built (peak memory)
     // Local work: an error here is thrown on every process before the
@@ -547,14 +600,24 @@ namespace glide
               const unsigned int j = columns[e] - n_u;
               couplings.push_back({row, j, values[e]});
               if (states[j].closed)
-                rhs_reads.insert(rhs_reads.end(),
-                                 blocks[j].dofs.begin(),
-                                 blocks[j].dofs.end());
+                {
+                  rhs_reads.insert(rhs_reads.end(),
+                                   blocks[j].dofs.begin(),
+                                   blocks[j].dofs.end());
+                  for (const auto &entries : states[j].foreign)
+                    for (const auto &entry : entries)
+                      rhs_reads.push_back(blocks[entry.first].multiplier);
+                }
               else
                 rhs_reads.push_back(blocks[j].multiplier);
             }
       }
     closed_rows.assign(blocks.size(), {});
+    for (unsigned int j = first_own; j < end_own; ++j)
+      if (states[j].closed)
+        for (const auto &entries : states[j].foreign)
+          for (const auto &entry : entries)
+            rhs_reads.push_back(blocks[entry.first].multiplier);
     for (unsigned int j = first_own; j < end_own; ++j)
       if (states[j].closed)
         for (const auto d : blocks[j].dofs)
@@ -656,7 +719,8 @@ namespace glide
               v = s.scale * b(blocks[jb].multiplier);
             else
               for (unsigned int l = 0; l < s.frame.size(); ++l)
-                v += s.frame[l][k] * b(blocks[jb].dofs[l]);
+                v += s.frame[l][k] *
+                     (b(blocks[jb].dofs[l]) - foreign_force(jb, l, b));
           }
         else
           v = b(row);
@@ -672,7 +736,7 @@ namespace glide
           {
             double bf = 0.;
             for (unsigned int l = 0; l < s.b.size(); ++l)
-              bf += s.b[l] * b(block.dofs[l]);
+              bf += s.b[l] * (b(block.dofs[l]) - foreign_force(c.block, l, b));
             at(c.row) -= c.value * bf / s.b_norm2;
           }
         else
@@ -684,8 +748,20 @@ namespace glide
     condensed_b.compress(VectorOperation::insert);
   }
 
+  double
+  MultiplierCondensation::foreign_force(
+    const unsigned int                   j,
+    const unsigned int                   l,
+    const TrilinosWrappers::MPI::Vector &b) const
+  {
+    double f = 0.;
+    for (const auto &[k, value] : states[j].foreign[l])
+      f += value * b(blocks[k].multiplier) / states[k].open_diagonal;
+    return f;
+  }
+
   void
-  MultiplierCondensation::expand(const TrilinosWrappers::MPI::Vector &b,
+  MultiplierCondensation::expand(const TrilinosWrappers::MPI::Vector &b_in,
                                  const TrilinosWrappers::MPI::Vector &xc_in,
                                  TrilinosWrappers::MPI::Vector       &x) const
   {
@@ -698,6 +774,15 @@ namespace glide
         ghosted = xc_in;
       }
     const TrilinosWrappers::MPI::Vector &xc = parallel ? ghosted : xc_in;
+    // And the right-hand side at the open multipliers of hanging nodes on
+    // other processes (foreign_force()).
+    TrilinosWrappers::MPI::Vector ghosted_b;
+    if (parallel)
+      {
+        ghosted_b.reinit(b_in.locally_owned_elements(), rhs_ghosts, comm);
+        ghosted_b = b_in;
+      }
+    const TrilinosWrappers::MPI::Vector &b = parallel ? ghosted_b : b_in;
     // du: the condensed unknowns, closed nodes rotated back (du_S = Q x_S).
     std::vector<double> du(n_u, 0.);
     const auto          rotate_back = [&](const types::global_dof_index row) {
@@ -728,11 +813,12 @@ namespace glide
             x(block.multiplier) = b(block.multiplier) / s.open_diagonal;
             continue;
           }
-        // dl_j = b_j^T (f_S - A_S du) / |b_j|^2.
+        // dl_j = b_j^T (f_S - A_S du - B_Sh dl_h) / |b_j|^2 (h: open
+        // hanging nodes constrained to this one).
         double v = 0.;
         for (unsigned int l = 0; l < block.dofs.size(); ++l)
           {
-            double r = b(block.dofs[l]);
+            double r = b(block.dofs[l]) - foreign_force(j, l, b);
             for (const auto &[column, value] : closed_rows[j][l])
               r -= value * du[column];
             v += s.b[l] * r;

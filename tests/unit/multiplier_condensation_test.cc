@@ -115,6 +115,35 @@ namespace
     return s;
   }
 
+  /// Make slave node @p h of @p s a hanging node, u_h = (u_0 + u_1) / 2, as
+  /// deal.II's AffineConstraints leave the Newton system of a refined slave
+  /// surface: J = C^T J C and b = C^T b with C the constraint's map, so
+  /// that the node's rows and columns are empty but for a diagonal entry,
+  /// and its multiplier's force and constraint act on nodes 0 and 1.
+  void
+  make_hanging(System &s, const unsigned int h)
+  {
+    const unsigned int dim = s.dim;
+    FullMatrix<double> C(s.n, s.n);
+    for (unsigned int i = 0; i < s.n; ++i)
+      C(i, i) = 1.;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        C(dim * h + d, dim * h + d) = 0.;
+        C(dim * h + d, d)           = 0.5;
+        C(dim * h + d, dim + d)     = 0.5;
+      }
+    FullMatrix<double> JC(s.n, s.n), CtJC(s.n, s.n);
+    s.J.mmult(JC, C);
+    C.Tmmult(CtJC, JC);
+    for (unsigned int d = 0; d < dim; ++d)
+      CtJC(dim * h + d, dim * h + d) = s.J(d, d);
+    s.J = CtJC;
+    Vector<double> b(s.n);
+    C.Tvmult(b, s.b);
+    s.b = b;
+  }
+
   /// The Trilinos matrix of the dense @p A (entries that are zero left out).
   void
   to_trilinos(const FullMatrix<double> &A, TrilinosWrappers::SparseMatrix &T)
@@ -253,6 +282,45 @@ TEST(MultiplierCondensation, AllOpen)
 {
   check(make_system(2, {false, false}, 2, 5));
   check(make_system(3, {false, false, false}, 3, 6));
+}
+
+// A hanging slave node (a refined slave surface) passes its multiplier's
+// force to its parents' rows, and its own rows are empty. Open, its
+// multiplier is known and goes to the right-hand side of those rows, closed
+// or open (without that, the solution differs from Gauss elimination).
+// Closed, the node-by-node elimination does not apply: NotCondensable, so
+// that the linear solver can take the direct solver for that Jacobian.
+TEST(MultiplierCondensation, OpenHangingSlaveNode)
+{
+  for (const unsigned int dim : {2u, 3u})
+    for (const bool parents_closed : {true, false})
+      {
+        System s = make_system(dim,
+                               {parents_closed, parents_closed, false, true},
+                               dim,
+                               8 + dim);
+        make_hanging(s, 2);
+        check(s);
+      }
+}
+
+TEST(MultiplierCondensation, ClosedHangingSlaveNodeIsNotCondensable)
+{
+  System s = make_system(3, {true, true, true, false}, 3, 12);
+  make_hanging(s, 2);
+  TrilinosWrappers::SparseMatrix J;
+  to_trilinos(s.J, J);
+  MultiplierCondensation condensation(s.blocks,
+                                      s.n_u,
+                                      complete_index_set(s.n),
+                                      MPI_COMM_WORLD);
+  EXPECT_THROW(condensation.condense(J),
+               MultiplierCondensation::NotCondensable);
+  // The same system with the node open again is condensed.
+  s.J(s.blocks[2].multiplier, s.blocks[2].multiplier) = 1.;
+  for (unsigned int i = 0; i < s.n_u; ++i)
+    s.J(s.blocks[2].multiplier, i) = 0.;
+  check(s);
 }
 
 // The caller's numbering is checked (on every process at once under MPI):

@@ -94,7 +94,9 @@ namespace glide
     unsigned int
     n_condensed() const
     {
-      return condensation && kind == "amg" ? condensation->n_closed() : 0;
+      return condensation && kind == "amg" && fallback.empty() ?
+               condensation->n_closed() :
+               0;
     }
 
     /// False if solve() no longer reads the matrix given to initialize()
@@ -103,7 +105,17 @@ namespace glide
     bool
     keeps_matrix() const
     {
-      return !(condensation && kind == "amg");
+      return !(condensation && kind == "amg" && fallback.empty());
+    }
+
+    /// Why the last initialize() took the direct solver although AMG was
+    /// chosen (the contact multipliers of that Jacobian could not be
+    /// eliminated: MultiplierCondensation::NotCondensable); empty if it
+    /// did not.
+    const std::string &
+    fallback_reason() const
+    {
+      return fallback;
     }
 
     /// Factorize (direct) or build the AMG hierarchy for @p matrix.
@@ -166,5 +178,11 @@ namespace glide
     std::unique_ptr<MultiplierCondensation>                    condensation;
     double last_inexact = 0.;
     bool   last_stalled = false;
+    /// See fallback_reason().
+    std::string fallback;
+
+    /// Factorize @p A with the direct solver.
+    void
+    factorize(const dealii::TrilinosWrappers::SparseMatrix &A);
   };
 } // namespace glide

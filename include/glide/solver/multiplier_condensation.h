@@ -9,6 +9,7 @@
 #include <Epetra_MultiVector.h>
 
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -48,10 +49,27 @@ namespace glide
    * needs the rows of the slave nodes it is coupled to, which are imported
    * from their owners (Epetra_Import) when they are on another process.
    * A slave node's DoFs and its multiplier must be owned by one process.
+   *
+   * A hanging slave node (a refined slave surface: its DoFs are
+   * constrained to its parents', and its rows of J are empty) passes its
+   * force to its parents' rows. While it is open its multiplier is known,
+   * and its entries in the parents' rows go to the right-hand side; once
+   * it is closed the node-by-node elimination does not apply and
+   * condense() throws NotCondensable (LinearSolver then takes the direct
+   * solver for that Jacobian).
    */
   class MultiplierCondensation
   {
   public:
+    /// The Jacobian given to condense() cannot be condensed (a closed
+    /// slave node has no rows of its own: a hanging node, or a node whose
+    /// displacements are all prescribed); thrown on every process.
+    class NotCondensable : public std::runtime_error
+    {
+    public:
+      using std::runtime_error::runtime_error;
+    };
+
     /// One multiplier and the DoFs of its slave node.
     struct Block
     {
@@ -61,8 +79,8 @@ namespace glide
 
     /// @p blocks: this process's multipliers (numbered from
     /// @p n_displacements on, contiguously over the processes in rank
-    /// order) with their slave nodes' DoFs, which no other block shares
-    /// and no multiplier other than its own reaches. Collective.
+    /// order) with their slave nodes' DoFs, which no other block shares.
+    /// Collective.
     MultiplierCondensation(
       std::vector<Block>                    blocks,
       const dealii::types::global_dof_index n_displacements,
@@ -129,6 +147,10 @@ namespace glide
       /// Factor of the constraint row: its diagonal becomes the node's
       /// normal stiffness n^T A_SS n (see condense()).
       double scale = 1.;
+      /// For each DoF l of the node, the multipliers of other slave nodes
+      /// (hanging nodes constrained to this one) in its row, as (block,
+      /// entry); shared with the other processes for closed blocks.
+      std::vector<std::vector<std::pair<unsigned int, double>>> foreign;
     };
 
     /// The local view of row @p row of J, or of the rows imported from
@@ -140,6 +162,14 @@ namespace glide
              double                              *&values,
              int                                 *&idx,
              const Epetra_BlockMap               *&columns) const;
+
+    /// B_Sh dl_h in row @p l of (closed or own) block @p j: the force of the
+    /// open hanging nodes constrained to its node, their multipliers known
+    /// from the right-hand side @p b (ghosted at them under MPI).
+    double
+    foreign_force(const unsigned int                           j,
+                  const unsigned int                           l,
+                  const dealii::TrilinosWrappers::MPI::Vector &b) const;
 
     /// The state of block @p j (this process's) from the rows of J.
     void
