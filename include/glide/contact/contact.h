@@ -284,13 +284,17 @@ namespace glide
       std::unique_ptr<ContactEnforcement<dim>> enforcement;
     };
 
-    /// Merge slave nodes that are one point of the mesh: a hanging node
-    /// of quadratic elements whose DoFs equal another slave node's
-    /// (find_slave_nodes()).
+    /// Hanging slave nodes (a locally refined slave surface) into the
+    /// slave nodes they are constrained to (find_slave_nodes()): one whose
+    /// DoFs equal another slave node's (quadratic elements) is merged
+    /// into it; with @p distribute, one that is a weighted mean of others
+    /// (u_h = sum w_p u_p) gives them its tributary area, normal and
+    /// surface mass with those weights and is no constraint point itself.
     void
-    merge_coincident_nodes(
+    condense_hanging_nodes(
       std::map<dealii::types::global_dof_index, SlaveNode<dim>> &found,
-      std::map<dealii::types::global_dof_index, unsigned int> &n_facets) const;
+      std::map<dealii::types::global_dof_index, unsigned int>   &n_facets,
+      const bool distribute) const;
 
     /// Slave nodes of pair @p p (parameters) with their areas, sizes and
     /// normals, locally owned ones only; @p slave_modulus gets the smallest
