@@ -72,8 +72,7 @@ namespace glide
   void
   Contact<dim>::condense_hanging_nodes(
     std::map<types::global_dof_index, SlaveNode<dim>> &found,
-    std::map<types::global_dof_index, unsigned int>   &n_facets,
-    const bool                                         distribute) const
+    std::map<types::global_dof_index, unsigned int>   &n_facets) const
   {
     // A slave node at a hanging node of a locally refined slave surface
     // (3D) has no displacement of its own: u_h = sum_p w_p u_p over the
@@ -95,10 +94,10 @@ namespace glide
     // parents with the constraint's weights: the areas are then int N_p^c
     // dA of the constrained shape functions N_p^c = N_p + sum_h w_hp N_h,
     // so a uniform pressure still gives the exact nodal forces. Mortar
-    // (distribute = false) keeps its dual multipliers at hanging nodes
-    // (its weighted gaps are integrals over the slave facets): only the
-    // identical points are merged there. 2D has no hanging node on a
-    // boundary. The hanging-node constraints alone decide (the Newton
+    // adds the hanging node's weighted gap, weight and master terms to its
+    // parents' with the same weights (SlaveNode::hanging): its multiplier
+    // space is that of the constrained shape functions. 2D has no hanging
+    // node on a boundary. The hanging-node constraints alone decide (the Newton
     // system's, which add the boundary conditions, are built after the
     // contact pairs).
     const auto &dof_handler = elasticity.get_dof_handler();
@@ -141,9 +140,7 @@ namespace glide
             ok      = c == 0 || these == parents;
             parents = std::move(these);
           }
-        const bool identity =
-          ok && parents.size() == 1 && parents[0].second == 1.;
-        if (ok && (identity || distribute))
+        if (ok)
           parents_of[key] = std::move(parents);
       }
     // The surface mass int N_a N_b dA becomes C^T M C: columns first (every
@@ -165,6 +162,7 @@ namespace glide
             auto &into = found.at(p);
             into.area += w * from.area;
             into.normal += w * from.normal;
+            into.hanging.emplace_back(hanging, w);
             for (const auto &[b, m] : from.mass)
               into.mass[b] += w * m;
             // One point (identity): the facets of both count for its size.
@@ -307,7 +305,7 @@ namespace glide
       }
     slave_modulus = Utilities::MPI::min(slave_modulus, comm);
     if (!node_based)
-      condense_hanging_nodes(found, n_facets, p.formulation != "mortar");
+      condense_hanging_nodes(found, n_facets);
     std::vector<SlaveNode<dim>> nodes;
     for (auto &[dof, node] : found)
       if (owned.is_element(dof))

@@ -209,6 +209,23 @@ namespace glide
     for (unsigned int i = 0; i < nodes.size(); ++i)
       AssertThrow(surface_node[i] != numbers::invalid_unsigned_int,
                   ExcInternalError());
+    std::map<types::global_dof_index, unsigned int> surface_node_of_dof;
+    for (unsigned int k = 0; k < surface_nodes.size(); ++k)
+      surface_node_of_dof[surface_nodes[k].dofs[0]] = k;
+    members.assign(nodes.size(), {});
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      {
+        members[i].emplace_back(surface_node[i], 1.);
+        for (const auto &[key, w] : nodes[i].hanging)
+          {
+            const auto it = surface_node_of_dof.find(key);
+            AssertThrow(it != surface_node_of_dof.end(),
+                        ExcMessage("mortar: a hanging slave node merged into "
+                                   "a slave node is not on the slave "
+                                   "surface held by this process"));
+            members[i].emplace_back(it->second, w);
+          }
+      }
     facets_at.assign(surface_nodes.size(), {});
     const auto &facets = slave->get_facets();
     for (unsigned int f = 0; f < facets.size(); ++f)
@@ -295,16 +312,25 @@ namespace glide
   }
 
   template <int dim>
+  std::vector<typename Mortar<dim>::Patch>
+  Mortar<dim>::patches(const unsigned int i) const
+  {
+    std::vector<Patch> result;
+    for (const auto &member : members[i])
+      result.push_back(patch_at(member.first));
+    return result;
+  }
+
+  template <int dim>
   typename Mortar<dim>::Patch
-  Mortar<dim>::patch(const unsigned int i) const
+  Mortar<dim>::patch_at(const unsigned int j) const
   {
     Patch      p;
     const auto add = [](std::vector<unsigned int> &list, const unsigned int k) {
       if (std::find(list.begin(), list.end(), k) == list.end())
         list.push_back(k);
     };
-    const unsigned int j      = surface_node[i];
-    const auto        &facets = slave->get_facets();
+    const auto &facets = slave->get_facets();
     p.slave.push_back(j);
     p.facets = facets_at[j];
     // The facets at j, and (for the nodal normals of their nodes) the
@@ -604,25 +630,47 @@ namespace glide
   typename Mortar<dim>::template Terms<double>
   Mortar<dim>::terms(const unsigned int i) const
   {
-    const Patch                          p = patch(i);
-    std::vector<std::array<double, dim>> xs, xm;
-    for (const auto k : p.slave)
+    Terms<double>                  sum;
+    std::map<unsigned int, double> M;
+    const auto                     all = patches(i);
+    for (unsigned int member = 0; member < all.size(); ++member)
       {
-        std::array<double, dim> x;
-        for (unsigned int d = 0; d < dim; ++d)
-          x[d] = slave_x[k][d];
-        xs.push_back(x);
+        const Patch                         &p = all[member];
+        std::vector<std::array<double, dim>> xs, xm;
+        for (const auto k : p.slave)
+          {
+            std::array<double, dim> x;
+            for (unsigned int d = 0; d < dim; ++d)
+              x[d] = slave_x[k][d];
+            xs.push_back(x);
+          }
+        for (const auto k : p.master)
+          {
+            std::array<double, dim> x;
+            for (unsigned int d = 0; d < dim; ++d)
+              x[d] = this->surface->get_positions()[k][d];
+            xm.push_back(x);
+          }
+        Terms<double> t;
+        compute(p, xs, xm, t);
+        if (all.size() == 1)
+          return t;
+        // A hanging node's terms, weighted (the node's own: weight 1).
+        const double w = members[i][member].second;
+        if (member == 0)
+          sum.normal = t.normal;
+        sum.weight += w * t.weight;
+        sum.weighted_gap += w * t.weighted_gap;
+        sum.failed = sum.failed || t.failed;
+        for (unsigned int a = 0; a < t.master_nodes.size(); ++a)
+          M[t.master_nodes[a]] += w * t.M[a];
       }
-    for (const auto k : p.master)
+    for (const auto &[m, value] : M)
       {
-        std::array<double, dim> x;
-        for (unsigned int d = 0; d < dim; ++d)
-          x[d] = this->surface->get_positions()[k][d];
-        xm.push_back(x);
+        sum.master_nodes.push_back(m);
+        sum.M.push_back(value);
       }
-    Terms<double> t;
-    compute(p, xs, xm, t);
-    return t;
+    return sum;
   }
 
   template <int dim>
@@ -660,7 +708,22 @@ namespace glide
                          const VectorType &,
                          Linearization &l) const
   {
-    const Patch        p  = patch(i);
+    // The union of the slave and master nodes of the node's patches (its
+    // own first, so that its slave node comes first), and the terms summed
+    // over them with their weights (a hanging node's merged into it).
+    const auto                all = patches(i);
+    Patch                     p;
+    std::vector<unsigned int> masters;
+    for (const auto &q : all)
+      {
+        for (const auto k : q.slave)
+          if (std::find(p.slave.begin(), p.slave.end(), k) == p.slave.end())
+            p.slave.push_back(k);
+        masters.insert(masters.end(), q.master.begin(), q.master.end());
+      }
+    std::sort(masters.begin(), masters.end());
+    masters.erase(std::unique(masters.begin(), masters.end()), masters.end());
+    p.master              = masters;
     const unsigned int n  = dim * (p.slave.size() + p.master.size());
     const unsigned int nm = dim * p.slave.size();
     std::vector<std::array<Fad, dim>> xs(p.slave.size()), xm(p.master.size());
@@ -684,7 +747,32 @@ namespace glide
           l.dofs.push_back(this->surface->get_nodes()[p.master[a]].dofs[d]);
         }
     Terms<Fad> t;
-    compute(p, xs, xm, t);
+    if (all.size() == 1)
+      compute(all[0], xs, xm, t); // p.slave and p.master are all[0]'s
+    else
+      {
+        t.master_nodes = p.master;
+        t.M.assign(p.master.size(), Fad(0.));
+        for (unsigned int member = 0; member < all.size(); ++member)
+          {
+            const Patch                      &q = all[member];
+            std::vector<std::array<Fad, dim>> qs, qm;
+            for (const auto k : q.slave)
+              qs.push_back(xs[index_of(p.slave, k)]);
+            for (const auto k : q.master)
+              qm.push_back(xm[index_of(p.master, k)]);
+            Terms<Fad> tq;
+            compute(q, qs, qm, tq);
+            const double w = members[i][member].second;
+            if (member == 0)
+              t.normal = tq.normal;
+            t.weight += w * tq.weight;
+            t.weighted_gap += w * tq.weighted_gap;
+            t.failed = t.failed || tq.failed;
+            for (unsigned int a = 0; a < q.master.size(); ++a)
+              t.M[index_of(p.master, q.master[a])] += w * tq.M[a];
+          }
+      }
     const Fad g = t.weighted_gap / t.weight;
     // G = dg/dx at fixed n_j, D and M: -n_j on the slave node, (M_jm /
     // D_jj) n_j on master node m.
@@ -721,15 +809,17 @@ namespace glide
     // The slave nodes of the patch and the master nodes of the facets
     // within twice the search radius (so that the pattern holds while the
     // surfaces slide by up to one facet).
-    const Patch p = patch(i);
-    for (const auto k : p.slave)
-      for (unsigned int d = 0; d < dim; ++d)
-        dofs.push_back(slave->get_nodes()[k].dofs[d]);
     std::vector<unsigned int> master;
-    for (const auto f : p.facets)
-      for (const auto c : candidates(f, 2. * radius[f]))
-        for (const auto m : this->surface->get_facets()[c].nodes)
-          master.push_back(m);
+    for (const auto &p : patches(i))
+      {
+        for (const auto k : p.slave)
+          for (unsigned int d = 0; d < dim; ++d)
+            dofs.push_back(slave->get_nodes()[k].dofs[d]);
+        for (const auto f : p.facets)
+          for (const auto c : candidates(f, 2. * radius[f]))
+            for (const auto m : this->surface->get_facets()[c].nodes)
+              master.push_back(m);
+      }
     std::sort(master.begin(), master.end());
     master.erase(std::unique(master.begin(), master.end()), master.end());
     coupled[i] = master;
@@ -743,11 +833,13 @@ namespace glide
   Mortar<dim>::outside_pattern(const unsigned int i,
                                const Constraint<dim> &) const
   {
-    const Patch p = patch(i);
-    return !std::includes(coupled[i].begin(),
-                          coupled[i].end(),
-                          p.master.begin(),
-                          p.master.end());
+    for (const auto &p : patches(i))
+      if (!std::includes(coupled[i].begin(),
+                         coupled[i].end(),
+                         p.master.begin(),
+                         p.master.end()))
+        return true;
+    return false;
   }
 
   template <int dim>

@@ -69,9 +69,9 @@ namespace glide
                       "with rigid-body modes, for large 3D problems; with "
                       "hard contact it solves the displacement system left "
                       "once the contact multipliers are eliminated (node to "
-                      "surface and mortar; a Jacobian where a hanging "
-                      "slave node is closed goes to the direct solver; "
-                      "doc/theory/mortar.md). automatic: "
+                      "surface and mortar; a Jacobian where a slave node "
+                      "without free displacement is closed goes to the "
+                      "direct solver; doc/theory/mortar.md). automatic: "
                       "direct in 2D and for 3D problems up to 'Automatic "
                       "direct limit' DoFs, amg above (direct, with a note in "
                       "the log, where hard contact cannot be condensed).");

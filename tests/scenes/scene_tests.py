@@ -2313,8 +2313,15 @@ def case_mortar_patch_test_3d():
     only to 6.4e-8 (9.8e-8 swapped; node to surface on such meshes:
     17-19 %); the rule is now chosen by the facets' distortion
     (rule_degree() in mortar_3d.cc), measured 2026-12-03: 3.3e-16 and
-    2.2e-16."""
+    2.2e-16.
+    The upper block locally refined (one level within 0.35 of (0.3, 0.5,
+    0.3)): its interface has hanging nodes, whose terms mortar adds to
+    their parents' (doc/theory/mortar.md, "Hanging slave nodes"); as slave
+    and as master, the same checks (the refined slave has 52 slave nodes:
+    its surface nodes but the hanging ones)."""
     swapped = ["Contact pair interface/Slave=lower.top", "Contact pair interface/Master=upper.bottom"]
+    refined = ["Body upper/Refinement/Local refinements=1", "Body upper/Refinement/Refinement point=0.3, 0.5, 0.3",
+               "Body upper/Refinement/Refinement radius=0.35"]
     directory = tempfile.mkdtemp(prefix="glide-patch-3d-")
     files = {}
     for kind in ("rectangles", "general"):
@@ -2328,9 +2335,15 @@ def case_mortar_patch_test_3d():
                 "mortar_3d_perturbed": files["rectangles"],
                 "mortar_3d_perturbed_swapped": files["rectangles"] + swapped,
                 "mortar_3d_general_quadrilaterals": files["general"],
-                "mortar_3d_general_quadrilaterals_swapped": files["general"] + swapped}
+                "mortar_3d_general_quadrilaterals_swapped": files["general"] + swapped,
+                # A locally refined slave surface: hanging nodes on the interface.
+                "mortar_3d_refined_slave": refined,
+                "mortar_3d_refined_master": refined + swapped}
     for name, sets in variants.items():
-        rows, _, out = run(scene("patch-test-3d.prm"), "Output/Write VTU=false", *sets, name=name)
+        rows, log, out = run(scene("patch-test-3d.prm"), "Output/Write VTU=false", *sets, name=name)
+        if "refined" in name:
+            check(("with 52 nodes" in log) == name.endswith("slave"),
+                  f"{name}: the refined slave's hanging nodes are no slave nodes (52 slave nodes)")
         p = [n["CPRESS"] for n in contact_nodes(out, "interface")]
         mean = sum(p) / len(p)
         spread = max(abs(x / mean - 1) for x in p)
@@ -2406,15 +2419,14 @@ def case_contact_amg_matches_direct():
     (hertz-2d-mortar.prm, 2 steps); the 3D mortar scene on a uniform
     block of 16^3 cells 1e6 times stiffer than the sphere (the slave the
     stiff body; doc/performance.md: on the finer block above it still fails);
-    and the shipped 3D scenes, whose slave surfaces are locally refined. Node
-    to surface has no constraint points at hanging nodes
-    (Contact::condense_hanging_nodes): AMG in every step. Mortar keeps its
-    multipliers there: their forces go to their parents' rows, which the
-    elimination takes while they are open (hertz-3d-elastic.prm, steps 1 to
-    3); where one closes (step 4) that Jacobian goes to the direct solver,
-    with a note: same answer, same Newton iterations. Without the hanging
-    node's force in the parents' right-hand side the Newton iterations or
-    the answer change (unit.MultiplierCondensation.OpenHangingSlaveNode).
+    and the shipped 3D scenes, whose slave surfaces are locally refined:
+    hanging slave nodes are no constraint points (Contact::
+    condense_hanging_nodes; mortar adds their terms to their parents'), so
+    AMG takes every step, node to surface and mortar. And hertz-3d-elastic.prm
+    with the block's side x = 0 fixed as well: the slave nodes there have no
+    free displacement, and once one of them is closed the elimination does
+    not apply; from that Jacobian on the direct solver takes over, with one
+    note in the log: same answer, same Newton iterations.
     'Type = automatic' picks AMG for a 3D hard-contact scene above
     'Automatic direct limit', refined slave surfaces included."""
     block = ["Body block/Block/Lower corner=0, -0.5, 0", "Body block/Block/Upper corner=0.5, 0, 0.5",
@@ -2441,22 +2453,22 @@ def case_contact_amg_matches_direct():
              ("mortar 3D, refined slave", scene_file("hertz-3d-elastic.prm"), "hertz",
               ["Output/Write VTU=false", "Contact pair hertz/Formulation=mortar"]),
              ("node to surface 3D, rigid plane, refined slave", scene_file("hertz-3d.prm"), "hertz",
-              ["Output/Write VTU=false"])]
+              ["Output/Write VTU=false"]),
+             ("node to surface 3D, held slave nodes", scene_file("hertz-3d-elastic.prm"), "hertz",
+              ["Output/Write VTU=false", "Boundary condition ground/Surface=block.bottom, block.left"])]
     fallback = "the direct solver, not AMG, from this Jacobian on: a slave node in contact has no rows of its own"
     for label, f, pair, sets in cases:
         direct, _, out_d = run(f, *sets, "Linear solver/Type=direct", name="direct")
         amg, log, out_a = run(f, *sets, "Linear solver/Type=amg", name="amg")
         check("contact multipliers eliminated" in log, f"{label}: AMG on the condensed system")
+        # GMRES counts its iterations, the direct solver one per solve.
+        krylov = [r["linear_iterations"] > r["kinsol_iterations"] for r in amg]
         if "refined slave" in label:
-            # GMRES counts its iterations, the direct solver one per solve.
-            krylov = [r["linear_iterations"] > r["kinsol_iterations"] for r in amg]
             print(f"measured: {label}: AMG in steps {[i + 1 for i, k in enumerate(krylov) if k]}")
-            if "node to surface" in label:
-                check(all(krylov) and fallback not in log, f"{label}: AMG in every step, no fallback")
-            else:
-                check(all(krylov[:3]) and not krylov[3] and log.count(fallback) == 1,
-                      f"{label}: AMG in steps 1 to 3; the direct solver, with one note, in step 4 "
-                      f"where a hanging slave node closes")
+            check(all(krylov) and fallback not in log, f"{label}: AMG in every step, no fallback")
+        if "held" in label:
+            check(not any(krylov) and log.count(fallback) == 1,
+                  f"{label}: the direct solver from the first Jacobian on, with one note")
         force = abs(direct[-1][f"contact_{pair}_force_y"])
         for a, d in zip(amg, direct):
             for k in d:

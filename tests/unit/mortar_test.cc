@@ -95,7 +95,8 @@ namespace
   void
   expect_exact_jacobian(const std::string &text,
                         const std::string &tag,
-                        const double       displacement)
+                        const double       displacement,
+                        const bool         hanging = false)
   {
     glide_test::ContactFixture<dim> s(text, "mortar_fd_" + tag + ".prm");
     VectorType                      U, v;
@@ -118,6 +119,20 @@ namespace
       n += st.closed ? 0 : 1;
     EXPECT_GT(active, 0) << tag << ": some nodes closed";
     EXPECT_GT(n, 0u) << tag << ": some nodes open";
+    if (hanging)
+      {
+        // Closed slave nodes with hanging nodes merged into them.
+        const auto  &nodes  = s.contact.slave_nodes(0);
+        const auto   status = s.contact.status(U);
+        unsigned int merged = 0, any = 0;
+        for (unsigned int i = 0; i < nodes.size(); ++i)
+          {
+            merged += !nodes[i].hanging.empty() && status[i].closed ? 1 : 0;
+            any += !nodes[i].hanging.empty() ? 1 : 0;
+          }
+        EXPECT_GT(any, 0u) << tag << ": nodes with hanging nodes";
+        EXPECT_GT(merged, 0u) << tag << ": closed nodes with hanging nodes";
+      }
   }
 
   const Mortar<2> &
@@ -281,7 +296,8 @@ namespace
   std::string
   ball_on_block_3d(const bool         ball_slave,
                    const bool         symmetry,
-                   const std::string &enforcement)
+                   const std::string &enforcement,
+                   const bool         refined = false)
   {
     std::ostringstream s;
     s << "set Dimension = 3\nset Analysis type = 3d\n"
@@ -290,12 +306,23 @@ namespace
       << "\nset Contact pairs = pair\n"
       << "subsection Body block\n  subsection Block\n"
       << "    set Lower corner = 0, 0, 0\n    set Upper corner = 1, 1, 1\n"
-      << "    set Subdivisions = 4, 1, 4\n  end\nend\n"
+      << "    set Subdivisions = 4, 1, 4\n  end\n"
+      // Locally refined slave surfaces: hanging nodes in the contact zone.
+      << (refined && !ball_slave ?
+            "  subsection Refinement\n    set Local refinements = 1\n"
+            "    set Refinement point = 0.05, 1, 0.05\n"
+            "    set Refinement radius = 0.2\n  end\n" :
+            "")
+      << "end\n"
       << "subsection Body ball\n  set Mesh = hertz\n"
       << "  subsection Round shapes\n    set Center = "
       << (symmetry ? "0, 1.95, 0" : "0.05, 1.95, 0.05")
       << "\n    set Radius = 1\n  end\n"
-      << "  subsection Refinement\n    set Global refinements = 1\n  end\nend\n"
+      << "  subsection Refinement\n    set Global refinements = 1\n"
+      << (refined && ball_slave ? "    set Local refinements = 1\n"
+                                  "    set Refinement radius = 0.25\n" :
+                                  "")
+      << "  end\nend\n"
       << "subsection Boundary condition hold\n  set Surface = block.bottom\n"
       << "  set Type = fixed\nend\n"
       << "subsection Boundary condition top\n  set Surface = ball.flat\n"
@@ -333,6 +360,17 @@ TEST(Mortar, JacobianMatchesFiniteDifferences3D)
       expect_exact_jacobian<3>(ball_on_block_3d(false, true, e),
                                "ball_symmetry_3d_" + e,
                                0.01);
+      // Locally refined slave surfaces, flat and curved: the terms of the
+      // hanging nodes in the contact zone are added to their parents'
+      // (hard: some of those parents closed; measured 2 of 5 and 2 of 3).
+      expect_exact_jacobian<3>(ball_on_block_3d(false, false, e, true),
+                               "ball_master_refined_3d_" + e,
+                               0.01,
+                               e == "hard");
+      expect_exact_jacobian<3>(ball_on_block_3d(true, false, e, true),
+                               "ball_slave_refined_3d_" + e,
+                               0.01,
+                               e == "hard");
       // Flat, non-matching, the slave overhanging the master on two sides
       // (its facets there partly or wholly outside: the nodes beyond the
       // master's edges have no constraint and count as open).

@@ -286,15 +286,14 @@ namespace glide
 
     /// Hanging slave nodes (a locally refined slave surface) into the
     /// slave nodes they are constrained to (find_slave_nodes()): one whose
-    /// DoFs equal another slave node's (quadratic elements) is merged
-    /// into it; with @p distribute, one that is a weighted mean of others
-    /// (u_h = sum w_p u_p) gives them its tributary area, normal and
-    /// surface mass with those weights and is no constraint point itself.
+    /// DoFs are a weighted mean of other slave nodes' (u_h = sum w_p u_p;
+    /// quadratic elements: equal to one node's) gives them its tributary
+    /// area, normal and surface mass with those weights
+    /// (SlaveNode::hanging) and is no constraint point itself.
     void
     condense_hanging_nodes(
       std::map<dealii::types::global_dof_index, SlaveNode<dim>> &found,
-      std::map<dealii::types::global_dof_index, unsigned int>   &n_facets,
-      const bool distribute) const;
+      std::map<dealii::types::global_dof_index, unsigned int> &n_facets) const;
 
     /// Slave nodes of pair @p p (parameters) with their areas, sizes and
     /// normals, locally owned ones only; @p slave_modulus gets the smallest

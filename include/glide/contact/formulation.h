@@ -37,6 +37,11 @@ namespace glide
     /// with the neighbours b on the slave surface (keyed by x DoF).
     dealii::Tensor<1, dim>                            normal;
     std::map<dealii::types::global_dof_index, double> mass;
+    /// Hanging nodes of the slave surface (keyed by x DoF) whose area went
+    /// to this node, with their constraint weights
+    /// (Contact::condense_hanging_nodes): mortar adds their weighted
+    /// terms to this node's.
+    std::vector<std::pair<dealii::types::global_dof_index, double>> hanging;
   };
 
   /// Why a constraint exists or not at an iterate (house style: an explicit

@@ -57,6 +57,15 @@ namespace glide
    * facets (compute_3d(), source/contact/mortar_3d.cc: clipping in the
    * slave facet's auxiliary plane, Popp, Gitterle, Gee and Wall 2010);
    * degree 2 in 3D is refused by make_formulation().
+   *
+   * A locally refined slave surface: a hanging node h (u_h = sum_p w_hp
+   * u_p) has no multiplier of its own; its terms are added to its
+   * parents' with the constraint's weights (D_p += w_hp D_h, g~_p +=
+   * w_hp g~_h, M_pm += w_hp M_hm; SlaveNode::hanging). The multiplier
+   * space is then spanned by Phi_p + sum_h w_hp Phi_h, dual to the
+   * constrained shape functions up to the D_h of the hanging nodes, and
+   * the force L_p acts on node p: a uniform pressure still gives the
+   * exact nodal forces on both sides.
    */
   template <int dim>
   class Mortar : public Formulation<dim>
@@ -155,8 +164,14 @@ namespace glide
       std::vector<unsigned int>              master; ///< their nodes
     };
 
+    /// The patch of slave surface node @p j.
     Patch
-    patch(const unsigned int i) const;
+    patch_at(const unsigned int j) const;
+
+    /// The patches of slave node @p i: its own first, then those of the
+    /// hanging nodes merged into it (members).
+    std::vector<Patch>
+    patches(const unsigned int i) const;
 
     /// The terms of the patch @p p with slave positions @p xs (per
     /// p.slave) and master positions @p xm (per p.master).
@@ -193,6 +208,9 @@ namespace glide
     std::vector<unsigned int> node_of;
     /// Formulation's slave node -> slave surface node.
     std::vector<unsigned int> surface_node;
+    /// Per slave node: the slave surface nodes whose terms it sums, with
+    /// their weights (itself with 1 first, then its hanging nodes).
+    std::vector<std::vector<std::pair<unsigned int, double>>> members;
     /// Slave surface node -> the slave facets at it.
     std::vector<std::vector<unsigned int>> facets_at;
     /// Per slave facet: the search radius around it.
