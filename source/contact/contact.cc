@@ -146,14 +146,20 @@ namespace glide
     // The surface mass int N_a N_b dA becomes C^T M C: columns first (every
     // node's entries at a hanging node go to its parents), then rows.
     for (auto &[key, node] : found)
-      for (const auto &[hanging, parents] : parents_of)
-        if (const auto it = node.mass.find(hanging); it != node.mass.end())
-          {
-            const double m = it->second;
-            node.mass.erase(it);
-            for (const auto &[p, w] : parents)
-              node.mass[p] += w * m;
-          }
+      {
+        std::vector<std::pair<types::global_dof_index, double>> moved;
+        for (auto it = node.mass.begin(); it != node.mass.end();)
+          if (parents_of.count(it->first) > 0)
+            {
+              moved.emplace_back(*it);
+              it = node.mass.erase(it);
+            }
+          else
+            ++it;
+        for (const auto &[hanging, m] : moved)
+          for (const auto &[p, w] : parents_of.at(hanging))
+            node.mass[p] += w * m;
+      }
     for (const auto &[hanging, parents] : parents_of)
       {
         const auto &from = found.at(hanging);
@@ -835,10 +841,11 @@ namespace glide
           masters.insert(surface->own_dofs().begin(),
                          surface->own_dofs().end());
         }
-    // A hanging slave node (a refined slave surface) is a block too: while
-    // it is open the elimination takes its force in its parents' rows; a
-    // Jacobian where it is closed goes to the direct solver
-    // (MultiplierCondensation::NotCondensable).
+    // A slave node whose DoFs are constrained (a hanging node whose parents
+    // are not all slave nodes of the pair; condense_hanging_nodes()) is a
+    // block too: while it is open the elimination takes its force in its
+    // parents' rows; a Jacobian where it is closed goes to the direct
+    // solver (MultiplierCondensation::NotCondensable).
     for (const auto &pair : pairs)
       {
         if (pair.enforcement->block_size() == 0)

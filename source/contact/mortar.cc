@@ -1,3 +1,4 @@
+#include <glide/base/collective_failure.h>
 #include <glide/contact/facet_basis.h>
 #include <glide/contact/mortar.h>
 #include <glide/contact/mortar_geometry.h>
@@ -11,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 namespace glide
 {
@@ -212,20 +214,28 @@ namespace glide
     std::map<types::global_dof_index, unsigned int> surface_node_of_dof;
     for (unsigned int k = 0; k < surface_nodes.size(); ++k)
       surface_node_of_dof[surface_nodes[k].dofs[0]] = k;
+    // The hanging nodes merged into each slave node (their facets lie
+    // within the gathered reach); a failure on one process is thrown on
+    // all of them.
     members.assign(nodes.size(), {});
+    std::string failure;
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
         members[i].emplace_back(surface_node[i], 1.);
         for (const auto &[key, w] : nodes[i].hanging)
           {
             const auto it = surface_node_of_dof.find(key);
-            AssertThrow(it != surface_node_of_dof.end(),
-                        ExcMessage("mortar: a hanging slave node merged into "
-                                   "a slave node is not on the slave "
-                                   "surface held by this process"));
-            members[i].emplace_back(it->second, w);
+            if (it != surface_node_of_dof.end())
+              members[i].emplace_back(it->second, w);
+            else if (failure.empty())
+              failure = "mortar (contact pair '" +
+                        this->context.parameters.name +
+                        "'): a hanging slave node merged into a slave node "
+                        "is not on the part of the slave surface this "
+                        "process holds";
           }
       }
+    throw_first_failure<std::logic_error>(failure, this->context.comm);
     facets_at.assign(surface_nodes.size(), {});
     const auto &facets = slave->get_facets();
     for (unsigned int f = 0; f < facets.size(); ++f)
