@@ -322,6 +322,23 @@ namespace glide
   }
 
   template <int dim>
+  template <typename T>
+  void
+  Mortar<dim>::add_weighted(const Terms<T> &t,
+                            const double    w,
+                            const bool      first,
+                            Terms<T>       &sum) const
+  {
+    if (first)
+      sum.normal = t.normal;
+    sum.weight += w * t.weight;
+    sum.weighted_gap += w * t.weighted_gap;
+    sum.failed = sum.failed || t.failed;
+    for (unsigned int a = 0; a < t.master_nodes.size(); ++a)
+      sum.M[index_of(sum.master_nodes, t.master_nodes[a])] += w * t.M[a];
+  }
+
+  template <int dim>
   std::vector<typename Mortar<dim>::Patch>
   Mortar<dim>::patches(const unsigned int i) const
   {
@@ -640,9 +657,17 @@ namespace glide
   typename Mortar<dim>::template Terms<double>
   Mortar<dim>::terms(const unsigned int i) const
   {
-    Terms<double>                  sum;
-    std::map<unsigned int, double> M;
-    const auto                     all = patches(i);
+    const auto    all = patches(i);
+    Terms<double> sum;
+    for (const auto &p : all)
+      sum.master_nodes.insert(sum.master_nodes.end(),
+                              p.master.begin(),
+                              p.master.end());
+    std::sort(sum.master_nodes.begin(), sum.master_nodes.end());
+    sum.master_nodes.erase(std::unique(sum.master_nodes.begin(),
+                                       sum.master_nodes.end()),
+                           sum.master_nodes.end());
+    sum.M.assign(sum.master_nodes.size(), 0.);
     for (unsigned int member = 0; member < all.size(); ++member)
       {
         const Patch                         &p = all[member];
@@ -666,19 +691,7 @@ namespace glide
         if (all.size() == 1)
           return t;
         // A hanging node's terms, weighted (the node's own: weight 1).
-        const double w = members[i][member].second;
-        if (member == 0)
-          sum.normal = t.normal;
-        sum.weight += w * t.weight;
-        sum.weighted_gap += w * t.weighted_gap;
-        sum.failed = sum.failed || t.failed;
-        for (unsigned int a = 0; a < t.master_nodes.size(); ++a)
-          M[t.master_nodes[a]] += w * t.M[a];
-      }
-    for (const auto &[m, value] : M)
-      {
-        sum.master_nodes.push_back(m);
-        sum.M.push_back(value);
+        add_weighted(t, members[i][member].second, member == 0, sum);
       }
     return sum;
   }
@@ -773,14 +786,7 @@ namespace glide
               qm.push_back(xm[index_of(p.master, k)]);
             Terms<Fad> tq;
             compute(q, qs, qm, tq);
-            const double w = members[i][member].second;
-            if (member == 0)
-              t.normal = tq.normal;
-            t.weight += w * tq.weight;
-            t.weighted_gap += w * tq.weighted_gap;
-            t.failed = t.failed || tq.failed;
-            for (unsigned int a = 0; a < q.master.size(); ++a)
-              t.M[index_of(p.master, q.master[a])] += w * tq.M[a];
+            add_weighted(tq, members[i][member].second, member == 0, t);
           }
       }
     const Fad g = t.weighted_gap / t.weight;

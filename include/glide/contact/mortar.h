@@ -173,6 +173,16 @@ namespace glide
     std::vector<Patch>
     patches(const unsigned int i) const;
 
+    /// Add @p w times the terms @p t of one patch to @p sum, whose
+    /// master_nodes hold every master node of the patches (the normal is
+    /// that of the first patch, @p first).
+    template <typename T>
+    void
+    add_weighted(const Terms<T> &t,
+                 const double    w,
+                 const bool      first,
+                 Terms<T>       &sum) const;
+
     /// The terms of the patch @p p with slave positions @p xs (per
     /// p.slave) and master positions @p xm (per p.master).
     template <typename T>
