@@ -146,8 +146,9 @@ namespace glide
     null_space.reset();
     // Hard contact: AMG works on the displacement system that remains
     // once the multipliers are eliminated. Where a Jacobian's multipliers
-    // cannot be (a hanging slave node in contact), that Jacobian goes to
-    // the direct solver; the next one tries the elimination again.
+    // cannot be (a closed slave node without free displacement), that
+    // Jacobian goes to the direct solver; the next one tries the
+    // elimination again.
     if (condensation)
       try
         {
