@@ -16,8 +16,15 @@ With --processes 1,2 each run is repeated under `mpirun -np P` (issue 15,
 doc/performance.md "Contact in parallel"): the table then gives the peak
 memory of the largest process and the speed-up against one process.
 
+With --ceiling (and --processes 1,P) P one-process runs are also started at
+once: P times one run's time alone over their mean time is the speed-up the
+machine allows on independent work (cores that share memory bandwidth and
+cache do not give P times the throughput of one), the ceiling of any
+P-process run.
+
 Usage: python3 study/contact_3d.py --glide build/glide [--sizes 21,32]
-       [--runs mortar-amg,nts-direct] [--processes 1] [--markdown FILE]
+       [--runs mortar-amg,nts-direct] [--processes 1] [--ceiling]
+       [--markdown FILE]
 """
 import argparse
 import csv
@@ -50,9 +57,10 @@ def sphere_refinement(n):
             "Body sphere/Refinement/Minimum refinement radius=0.25"]
 
 
-def run(glide, n, key, out, processes=1):
+def command(glide, n, key, out, processes=1, tag=""):
+    """The command of one run and its scene name."""
     formulation, solver, sets = RUNS[key]
-    name = f"contact3d-{n}-{key}-np{processes}"
+    name = f"contact3d-{n}-{key}-np{processes}{tag}"
     mpi = ["mpirun", "-np", str(processes)] if processes > 1 else []
     cmd = mpi + [glide, SCENE, "--set", f"Output/Directory={out}", "--set", f"Scene name={name}",
            "--set", "Output/Write VTU=false", "--set", "Load stepping/Number of steps=2",
@@ -61,10 +69,37 @@ def run(glide, n, key, out, processes=1):
            "--set", "Body block/Refinement/Local refinements=0"]
     for s in sphere_refinement(n) + sets:
         cmd += ["--set", s]
+    return cmd, name
+
+
+def run(glide, n, key, out, processes=1):
+    cmd, name = command(glide, n, key, out, processes)
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
         print(p.stdout[-3000:], p.stderr[-3000:])
         return None
+    return result(n, key, out, name)
+
+
+def concurrent(glide, n, key, out, copies):
+    """@p copies one-process runs at the same time (the machine's
+    throughput with every core busy on independent work); their results."""
+    started = []
+    for c in range(copies):
+        cmd, name = command(glide, n, key, out, 1, f"-copy{c}")
+        started.append((subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True), name))
+    results = []
+    for p, name in started:
+        _, err = p.communicate()
+        if p.returncode != 0:
+            print(err[-3000:])
+            return None
+        results.append(result(n, key, out, name))
+    return results
+
+
+def result(n, key, out, name):
+    formulation, solver, _ = RUNS[key]
     d = os.path.join(out, name)
     with open(os.path.join(d, "timings.csv")) as f:
         t = {r["quantity"]: r["value"] for r in csv.DictReader(f)}
@@ -87,6 +122,10 @@ def run(glide, n, key, out, processes=1):
             "cut_backs": int(float(rows[-1].get("cut_backs", 0))),
             "gmres": sum(int(float(r["linear_iterations"])) for r in rows),
             "total": total, "per_iteration": total / max(newton, 1),
+            # The Newton iterations alone (without mesh, set-up and output,
+            # which a run pays once): assembly, contact, linear solver.
+            "loop_per_iteration": (g("time:assembly: residual") + g("time:assembly: Jacobian") + contact
+                                   + solver_time) / max(newton, 1),
             "contact_share": contact / total, "solver_share": solver_time / total,
             "memory": g("peak_memory_mib"), "per_process": g("peak_memory_per_process_mib"),
             "p0_error": peak / p0 - 1}
@@ -99,6 +138,9 @@ def main():
     ap.add_argument("--runs", default="mortar-amg,nts-direct")
     ap.add_argument("--processes", default="1", help="comma-separated numbers of MPI processes")
     ap.add_argument("--markdown", help="append the table to this file")
+    ap.add_argument("--ceiling", action="store_true",
+                    help="with --processes 1,P: also P one-process runs at once (the machine's own limit "
+                         "on the speed-up)")
     a = ap.parse_args()
     processes = [int(x) for x in a.processes.split(",")]
     if processes != [1]:
@@ -131,14 +173,19 @@ def main():
 
 
 def parallel_table(a, processes):
-    """Each run on 1, 2, ... processes: time per Newton iteration, contact
-    share, peak memory of the largest process, speed-up and parallel
-    efficiency against the first number of processes."""
+    """Each run on 1, 2, ... processes: time per Newton iteration (the whole
+    run, and the Newton iterations alone), contact share, peak memory of the
+    largest process, speed-up and parallel efficiency against the first
+    number of processes. With --ceiling, also as many one-process runs at
+    once as the largest number of processes: the speed-up the machine
+    itself allows (its throughput with every core busy, against one run
+    alone), which no parallel run can exceed."""
     out = tempfile.mkdtemp(prefix="glide-contact3d-mpi-")
     lines = ["| N | formulation | linear solver | DoFs | processes | Newton its | per Newton it. [s] | "
-             "contact share | linear solver share | peak memory, largest process [MiB] | "
-             "speed-up | efficiency | memory per process / 1 process |",
-             "|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+             "Newton loop per it. [s] | contact share | linear solver share | "
+             "peak memory, largest process [MiB] | speed-up | speed-up, Newton loop | efficiency | "
+             "memory per process / 1 process |",
+             "|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     print(lines[0], flush=True)
     for n in [int(x) for x in a.sizes.split(",")]:
         for key in a.runs.split(","):
@@ -146,19 +193,36 @@ def parallel_table(a, processes):
             for np_ in processes:
                 r = run(a.glide, n, key, out, np_)
                 if r is None:
-                    line = f"| {n} | {RUNS[key][0]} | {RUNS[key][1]} | | {np_} | failed | | | | | | | |"
+                    line = f"| {n} | {RUNS[key][0]} | {RUNS[key][1]} | | {np_} | failed | | | | | | | | | |"
                 else:
                     first = first or (np_, r)
                     speed = first[1]["per_iteration"] / r["per_iteration"]
+                    loop = first[1]["loop_per_iteration"] / r["loop_per_iteration"]
                     line = (f"| {n} | {r['formulation']} | {r['solver']} | {r['dofs']} | {np_} | {r['newton']} | "
-                            f"{r['per_iteration']:.2f} | {100 * r['contact_share']:.0f} % | "
+                            f"{r['per_iteration']:.2f} | {r['loop_per_iteration']:.2f} | "
+                            f"{100 * r['contact_share']:.0f} % | "
                             f"{100 * r['solver_share']:.0f} % | {r['per_process']:.0f} | {speed:.2f} | "
-                            f"{100 * speed * first[0] / np_:.0f} % | "
+                            f"{loop:.2f} | {100 * speed * first[0] / np_:.0f} % | "
                             f"{r['per_process'] / first[1]['per_process']:.2f} |")
                 lines.append(line)
                 print(line, flush=True)
+            copies = max(processes)
+            if a.ceiling and first is not None and first[0] == 1 and copies > 1:
+                rs = concurrent(a.glide, n, key, out, copies)
+                if rs is None:
+                    line = f"| {n} | {RUNS[key][0]} | {RUNS[key][1]} | | {copies} x 1 at once | failed | | | | | | | | | |"
+                else:
+                    per = sum(x["per_iteration"] for x in rs) / copies
+                    loop = sum(x["loop_per_iteration"] for x in rs) / copies
+                    line = (f"| {n} | {RUNS[key][0]} | {RUNS[key][1]} | {rs[0]['dofs']} | "
+                            f"{copies} runs of 1 at once | {rs[0]['newton']} | {per:.2f} | {loop:.2f} | | | | "
+                            f"ceiling {copies * first[1]['per_iteration'] / per:.2f} | "
+                            f"ceiling {copies * first[1]['loop_per_iteration'] / loop:.2f} | | |")
+                lines.append(line)
+                print(line, flush=True)
     note = (f"\nMeasured with `python3 study/contact_3d.py --sizes {a.sizes} --runs {a.runs} "
-            f"--processes {a.processes}` on {platform.machine()}, {os.cpu_count()} cores.\n")
+            f"--processes {a.processes}{' --ceiling' if a.ceiling else ''}` on {platform.machine()}, "
+            f"{os.cpu_count()} cores.\n")
     print(note)
     if a.markdown:
         with open(a.markdown, "a") as f:

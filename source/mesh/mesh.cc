@@ -8,6 +8,7 @@
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/manifold_lib.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -392,12 +393,34 @@ namespace glide
     types::boundary_id                                           next_id = 0;
     std::map<types::manifold_id, std::unique_ptr<Manifold<dim>>> manifolds;
 
+    // Global refinements of each body's coarse mesh that are not the
+    // scene's: a block of N subdivisions is built as a coarse mesh of
+    // N / 2^k and refined k times (2^k the largest power of two dividing
+    // every N), the same cells. The distributed triangulation keeps the
+    // whole coarse mesh on every process and visits every coarse cell in
+    // each refinement cycle: with a block of 70^3 coarse cells the mesh
+    // took 45 s of a 290 s run on two processes, as long as on one.
+    std::vector<unsigned int> coarse_levels(scene.bodies.size(), 0);
     for (unsigned int b = 0; b < scene.bodies.size(); ++b)
       {
         const auto        &body = scene.bodies[b];
         Triangulation<dim> body_tria;
         std::map<types::boundary_id, std::vector<std::string>> names;
-        build_body_mesh<dim>(body.mesh, body.name, body_tria, names);
+        if (body.mesh.type == "block" && !body.mesh.imported)
+          {
+            MeshParameters coarse = body.mesh;
+            while (std::all_of(coarse.subdivisions.begin(),
+                               coarse.subdivisions.begin() + dim,
+                               [](const unsigned int n) { return n % 2 == 0; }))
+              {
+                for (unsigned int d = 0; d < dim; ++d)
+                  coarse.subdivisions[d] /= 2;
+                ++coarse_levels[b];
+              }
+            build_body_mesh<dim>(coarse, body.name, body_tria, names);
+          }
+        else
+          build_body_mesh<dim>(body.mesh, body.name, body_tria, names);
 
         std::map<types::boundary_id, types::boundary_id> new_id;
         for (const auto &[id, surfaces] : names)
@@ -509,8 +532,9 @@ namespace glide
         for (const auto &cell : tria.active_cell_iterators())
           if (cell->is_locally_owned())
             {
-              const auto &m = scene.bodies[cell->material_id()].mesh;
-              if (level < m.global_refinements)
+              const auto b = cell->material_id();
+              if (level <
+                  scene.bodies[b].mesh.global_refinements + coarse_levels[b])
                 {
                   cell->set_refine_flag();
                   any = true;
