@@ -7,12 +7,130 @@
 #include <deal.II/sundials/kinsol.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <sstream>
 
 namespace glide
 {
   using namespace dealii;
+
+  namespace
+  {
+    /**
+     * KINSOL (SUNDIALS 6) prints its failures ("[KINSOL ERROR]  KINSol /
+     * The line search algorithm was unable to ...") to the C stream that
+     * `stderr` is when its memory is created, inside deal.II's
+     * KINSOL::solve(), which gives no access to KINSetErrFile(). A failed
+     * attempt is a normal event that glide retries and reports in its own
+     * log, so while a solve runs `stderr` is a stream in memory (glibc
+     * lets it be assigned); release() restores it and returns the text.
+     * File descriptor 2 stays as it is, so the C library's own fatal
+     * messages and C++'s std::cerr still reach the terminal at once.
+     */
+    class CapturedStderr
+    {
+    public:
+      CapturedStderr()
+      {
+#ifdef __GLIBC__
+        std::fflush(stderr);
+        stream = open_memstream(&buffer, &size);
+        if (stream != nullptr)
+          {
+            saved  = stderr;
+            stderr = stream;
+          }
+#endif
+      }
+
+      CapturedStderr(const CapturedStderr &) = delete;
+      CapturedStderr &
+      operator=(const CapturedStderr &) = delete;
+
+      /// Restore stderr; what was written to it meanwhile.
+      std::string
+      release()
+      {
+        std::string text;
+#ifdef __GLIBC__
+        if (stream == nullptr)
+          return text;
+        stderr = saved;
+        std::fclose(stream);
+        stream = nullptr;
+        if (buffer != nullptr)
+          text.assign(buffer, size);
+        std::free(buffer);
+        buffer = nullptr;
+#endif
+        return text;
+      }
+
+      /// On an exception: restore stderr, and pass on what was captured.
+      ~CapturedStderr()
+      {
+        const std::string text = release();
+        std::fputs(text.c_str(), stderr);
+      }
+
+    private:
+      FILE       *stream = nullptr;
+      FILE       *saved  = nullptr;
+      char       *buffer = nullptr;
+      std::size_t size   = 0;
+    };
+
+    /**
+     * Split text written to stderr into KINSOL's messages (each block
+     * "[KINSOL ERROR]  <function>\n  <message>\n\n", or WARNING), returned
+     * as the messages themselves joined by "; ", and anything else, left in
+     * @p text.
+     */
+    std::string
+    take_kinsol_messages(std::string &text)
+    {
+      std::string messages, rest;
+      std::size_t at = 0;
+      while (at < text.size())
+        {
+          const std::size_t start = text.find("[KINSOL ", at);
+          if (start == std::string::npos)
+            {
+              rest += text.substr(at);
+              break;
+            }
+          // Less the blank line KINSOL writes before each message.
+          const bool blank = start > at && text[start - 1] == '\n';
+          rest += text.substr(at, start - at - (blank ? 1 : 0));
+          const std::size_t header_end = text.find('\n', start);
+          if (header_end == std::string::npos)
+            {
+              at = text.size();
+              break;
+            }
+          std::size_t end = text.find("\n\n", header_end + 1);
+          if (end == std::string::npos)
+            end = text.size();
+          std::string message =
+            text.substr(header_end + 1, end - header_end - 1);
+          const auto first = message.find_first_not_of(" \n");
+          const auto last  = message.find_last_not_of(" \n");
+          message          = first == std::string::npos ?
+                               std::string() :
+                               message.substr(first, last - first + 1);
+          if (!message.empty())
+            messages += (messages.empty() ? "" : "; ") + message;
+          at = end + (end < text.size() ? 2 : 0);
+        }
+      // What surrounded the blocks: only the blank lines KINSOL adds?
+      if (rest.find_first_not_of(" \n") == std::string::npos)
+        rest.clear();
+      text = rest;
+      return messages;
+    }
+  } // namespace
 
   NonlinearSolver::NonlinearSolver(const NonlinearSolverParameters &parameters,
                                    MPI_Comm                         comm)
@@ -145,21 +263,29 @@ namespace glide
     kinsol.get_function_scaling = [&]() -> VectorType & { return f_scale; };
     kinsol.get_solution_scaling = [&]() -> VectorType & { return u_scale; };
 
-    VectorType guess = U;
-    try
-      {
-        // KINSOL's own count of nonlinear iterations (setups may be fewer
-        // when the Jacobian is reused).
-        result.iterations = kinsol.solve(U);
-      }
-    catch (const ExceptionBase &e)
-      {
-        // Debug builds of deal.II throw on a KINSOL failure.
-        std::ostringstream s;
-        e.print_info(s);
-        if (failure.empty())
-          failure = s.str();
-      }
+    VectorType  guess = U;
+    std::string kinsol_says; // KINSOL's own reason for stopping
+    {
+      CapturedStderr captured;
+      try
+        {
+          // KINSOL's own count of nonlinear iterations (setups may be fewer
+          // when the Jacobian is reused).
+          result.iterations = kinsol.solve(U);
+        }
+      catch (const ExceptionBase &e)
+        {
+          // Debug builds of deal.II throw on a KINSOL failure.
+          std::ostringstream s;
+          e.print_info(s);
+          if (failure.empty())
+            failure = s.str();
+        }
+      std::string text = captured.release();
+      kinsol_says      = take_kinsol_messages(text);
+      // Anything else (another library's warning) goes where it was sent.
+      std::fputs(text.c_str(), stderr);
+    }
 
     if (fatal)
       {
@@ -202,6 +328,9 @@ namespace glide
           s << "no convergence in " << parameters.maximum_iterations
             << " Newton iterations (scaled residual " << result.residual_norm
             << " > tolerance " << parameters.tolerance << ")";
+        else if (!kinsol_says.empty())
+          s << "KINSOL stopped with scaled residual " << result.residual_norm
+            << " > tolerance " << parameters.tolerance << ": " << kinsol_says;
         else
           s << "KINSOL stopped with scaled residual " << result.residual_norm
             << " > tolerance " << parameters.tolerance

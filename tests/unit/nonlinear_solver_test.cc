@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 using namespace dealii;
 using namespace glide;
@@ -163,7 +164,47 @@ TEST(NonlinearSolver, AcceptsAStallAtTheRoundOffFloorOnly)
         EXPECT_EQ(result.converged, !noisy || floor > 0.) << what;
         EXPECT_EQ(result.at_floor, noisy && floor > 0.) << what;
         if (result.converged)
-          for (unsigned int i = 0; i < 8; ++i)
-            EXPECT_NEAR(x[i] * x[i] * x[i] + x[i], 1. + i, 1e-7) << what;
+          {
+            for (unsigned int i = 0; i < 8; ++i)
+              EXPECT_NEAR(x[i] * x[i] * x[i] + x[i], 1. + i, 1e-7) << what;
+          }
       }
+}
+
+// KINSOL prints its failures to stderr ("[KINSOL ERROR]  KINSol / The line
+// search algorithm was unable to ..."), also for attempts that glide then
+// retries successfully. The driver keeps them off the terminal and puts
+// KINSOL's reason into the failure message instead; anything else written
+// to stderr during the solve (another library's warning) still gets
+// there.
+TEST(NonlinearSolver, KinsolsFailureIsInTheMessageNotOnStderr)
+{
+  Problem p;
+  auto    cb    = p.callbacks();
+  auto    plain = cb.residual;
+  bool    said  = false;
+  cb.residual   = [&](const NonlinearSolver::VectorType &x,
+                    NonlinearSolver::VectorType       &F) {
+    plain(x, F);
+    for (unsigned int i = 0; i < 8; ++i)
+      F[i] += 1e-8 * std::sin(1e9 * x[i] + i);
+    F.compress(VectorOperation::insert);
+    if (!said)
+      std::fprintf(stderr, "a library's warning\n");
+    said = true;
+  };
+  NonlinearSolverParameters parameters;
+  parameters.tolerance = 1e-12;
+  parameters.strategy  = "line search";
+  NonlinearSolver             solver(parameters, MPI_COMM_WORLD);
+  NonlinearSolver::VectorType x(p.owned, MPI_COMM_WORLD);
+  testing::internal::CaptureStderr();
+  const auto        result = solver.solve(x, cb, 1., 1.);
+  const std::string err    = testing::internal::GetCapturedStderr();
+  EXPECT_FALSE(result.converged);
+  EXPECT_EQ(err, "a library's warning\n");
+  EXPECT_NE(result.message.find("The line search algorithm was unable to "
+                                "find an iterate sufficiently distinct"),
+            std::string::npos)
+    << result.message;
 }
