@@ -18,6 +18,9 @@
 #include "test_helpers.h"
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <map>
+
 using namespace dealii;
 using namespace glide;
 
@@ -136,6 +139,51 @@ end
     {
       EXPECT_NE(std::string(e.what()).find("upper.top"), std::string::npos)
         << "lists the known surfaces";
+    }
+}
+
+// A block of N subdivisions is built as a coarse mesh of N / 2^k cells per
+// direction refined k times (fewer coarse cells for p4est): the same cells
+// (each a square of the uniform grid), the same surfaces, and the scene's
+// own global refinements on top. 12 x 8 over [0, 3] x [0, 2] has 3 x 2
+// coarse cells; with one global refinement 24 x 16 cells of size 1/8.
+TEST(Mesh, BlockSubdivisionsGiveTheUniformGridOnAFewCoarseCells)
+{
+  for (const unsigned int global : {0u, 1u})
+    {
+      const std::string text =
+        "set Bodies = slab\nsubsection Body slab\n  subsection Block\n"
+        "    set Upper corner = 3, 2\n    set Subdivisions = 12, 8\n  end\n"
+        "  subsection Refinement\n    set Global refinements = " +
+        std::to_string(global) + "\n  end\nend\n";
+      const Scene scene =
+        Scene::read(glide_test::write_file("mesh_block_coarse.prm", text));
+      parallel::distributed::Triangulation<2> tria(MPI_COMM_WORLD);
+      Mesh<2>                                 mesh;
+      mesh.build(scene, tria);
+      const unsigned int n = 1u << global;
+      EXPECT_EQ(tria.n_cells(0), 6u) << "coarse cells";
+      EXPECT_EQ(tria.n_global_active_cells(), 96u * n * n);
+      const double                        h = 0.25 / n;
+      std::map<std::string, unsigned int> faces;
+      for (const auto &cell : tria.active_cell_iterators())
+        {
+          // Every cell is one square of the uniform grid.
+          const Point<2> lo = cell->vertex(0);
+          EXPECT_NEAR(cell->vertex(3)[0] - lo[0], h, 1e-14);
+          EXPECT_NEAR(cell->vertex(3)[1] - lo[1], h, 1e-14);
+          EXPECT_NEAR(lo[0] / h, std::round(lo[0] / h), 1e-10);
+          EXPECT_NEAR(lo[1] / h, std::round(lo[1] / h), 1e-10);
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary())
+              for (const auto &[name, ids] : mesh.surfaces())
+                if (ids.count(face->boundary_id()) > 0)
+                  ++faces[name];
+        }
+      EXPECT_EQ(faces["slab.top"], 12u * n);
+      EXPECT_EQ(faces["slab.bottom"], 12u * n);
+      EXPECT_EQ(faces["slab.left"], 8u * n);
+      EXPECT_EQ(faces["slab.right"], 8u * n);
     }
 }
 
