@@ -118,19 +118,29 @@ namespace glide
     if (U.size() > 0)
       x = this->position(i, U);
     coupled[i] = this->surface->nodes_near(x, this->surface->facet_size());
-    // ... and those of its projection now (onto the piece it is held on, if
-    // it is).
+    const auto merge = [&](const std::vector<unsigned int> &more) {
+      std::vector<unsigned int> all;
+      std::set_union(more.begin(),
+                     more.end(),
+                     coupled[i].begin(),
+                     coupled[i].end(),
+                     std::back_inserter(all));
+      coupled[i] = std::move(all);
+    };
+    // ... those of its projection now (onto the piece it is held on, if it
+    // is), and those within one facet size of the projected point: a node
+    // far from the master (the edge of a large slave surface) projects
+    // more than a facet size away, and there its projection moves from
+    // facet to facet as the master moves. Coupled only with the nodes
+    // around itself, it left the pattern in every Newton iteration of the
+    // 3D Hertz scene on a uniform block (8 rebuilds of the whole sparsity
+    // pattern in 8 iterations at 2e5 DoFs).
     const auto projection = held_projection(i, x);
     if (projection.found)
       {
-        const auto                used = this->surface->nodes_of(projection);
-        std::vector<unsigned int> all;
-        std::set_union(used.begin(),
-                       used.end(),
-                       coupled[i].begin(),
-                       coupled[i].end(),
-                       std::back_inserter(all));
-        coupled[i] = all;
+        merge(this->surface->nodes_of(projection));
+        merge(this->surface->nodes_near(projection.point,
+                                        this->surface->facet_size()));
       }
     for (const auto k : coupled[i])
       for (unsigned int d = 0; d < dim; ++d)
