@@ -22,9 +22,13 @@ machine allows on independent work (cores that share memory bandwidth and
 cache do not give P times the throughput of one), the ceiling of any
 P-process run.
 
+With --scenes-2d the shipped 2D Hertz scenes run instead (whole runs with
+VTU output), for the small-problem overhead of parallel runs.
+
 Usage: python3 study/contact_3d.py --glide build/glide [--sizes 21,32]
        [--runs mortar-amg,nts-direct] [--processes 1] [--ceiling]
        [--markdown FILE]
+       python3 study/contact_3d.py --glide build/glide --scenes-2d --processes 1,2
 """
 import argparse
 import csv
@@ -138,11 +142,16 @@ def main():
     ap.add_argument("--runs", default="mortar-amg,nts-direct")
     ap.add_argument("--processes", default="1", help="comma-separated numbers of MPI processes")
     ap.add_argument("--markdown", help="append the table to this file")
+    ap.add_argument("--scenes-2d", action="store_true",
+                    help="instead: the shipped 2D Hertz scenes (parameters/hertz-2d.prm, hertz-2d-elastic.prm) "
+                         "on the given numbers of processes")
     ap.add_argument("--ceiling", action="store_true",
                     help="with --processes 1,P: also P one-process runs at once (the machine's own limit "
                          "on the speed-up)")
     a = ap.parse_args()
     processes = [int(x) for x in a.processes.split(",")]
+    if a.scenes_2d:
+        return table_2d(a, processes)
     if processes != [1]:
         return parallel_table(a, processes)
     out = tempfile.mkdtemp(prefix="glide-contact3d-")
@@ -223,6 +232,55 @@ def parallel_table(a, processes):
     note = (f"\nMeasured with `python3 study/contact_3d.py --sizes {a.sizes} --runs {a.runs} "
             f"--processes {a.processes}{' --ceiling' if a.ceiling else ''}` on {platform.machine()}, "
             f"{os.cpu_count()} cores.\n")
+    print(note)
+    if a.markdown:
+        with open(a.markdown, "a") as f:
+            f.write("\n".join(lines) + "\n" + note)
+
+
+SCENES_2D = ["hertz-2d.prm", "hertz-2d-elastic.prm"]
+
+
+def table_2d(a, processes):
+    """The shipped 2D Hertz scenes (rigid flat; two elastic bodies), whole
+    runs with VTU output, on 1, 2, ... processes: the small-problem
+    overhead of running in parallel."""
+    out = tempfile.mkdtemp(prefix="glide-contact2d-mpi-")
+    lines = ["| scene | DoFs | processes | Newton its | total [s] | per Newton it. [s] | contact share | "
+             "linear solver share | output share | peak memory, largest process [MiB] | speed-up |",
+             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    print(lines[0], flush=True)
+    for scene in SCENES_2D:
+        first = None
+        for np_ in processes:
+            name = f"{os.path.splitext(scene)[0]}-np{np_}"
+            mpi = ["mpirun", "-np", str(np_)] if np_ > 1 else []
+            cmd = mpi + [a.glide, os.path.join(HERE, "..", "parameters", scene), "--set",
+                         f"Output/Directory={out}", "--set", f"Scene name={name}"]
+            p = subprocess.run(cmd, capture_output=True, text=True)
+            if p.returncode != 0:
+                print(p.stdout[-3000:], p.stderr[-3000:])
+                lines.append(f"| {scene} | | {np_} | failed | | | | | | | |")
+                continue
+            d = os.path.join(out, name)
+            with open(os.path.join(d, "timings.csv")) as f:
+                t = {r["quantity"]: r["value"] for r in csv.DictReader(f)}
+            with open(os.path.join(d, "statistics.csv")) as f:
+                rows = list(csv.DictReader(f))
+            g = lambda k: float(t.get(k, 0.0))
+            newton = sum(int(float(r["kinsol_iterations"])) for r in rows)
+            total = g("total_wall_time")
+            first = first or total
+            line = (f"| {os.path.splitext(scene)[0]} | {int(t['dofs'])} | {np_} | {newton} | {total:.2f} | "
+                    f"{total / max(newton, 1):.3f} | "
+                    f"{100 * (g('time:contact: residual') + g('time:contact: Jacobian')) / total:.1f} % | "
+                    f"{100 * (g('time:linear solver: setup') + g('time:linear solver: solve')) / total:.0f} % | "
+                    f"{100 * g('time:output') / total:.0f} % | {g('peak_memory_per_process_mib'):.0f} | "
+                    f"{first / total:.2f} |")
+            lines.append(line)
+            print(line, flush=True)
+    note = (f"\nMeasured with `python3 study/contact_3d.py --scenes-2d --processes {a.processes}` on "
+            f"{platform.machine()}, {os.cpu_count()} cores.\n")
     print(note)
     if a.markdown:
         with open(a.markdown, "a") as f:
