@@ -135,6 +135,14 @@ def result(n, key, out, name):
             "p0_error": peak / p0 - 1}
 
 
+def finish(a, lines, note):
+    """Print the note under the table; append both to --markdown's file."""
+    print(note)
+    if a.markdown:
+        with open(a.markdown, "a") as f:
+            f.write("\n".join(lines) + "\n" + note)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--glide", required=True)
@@ -175,10 +183,7 @@ def main():
             print(line, flush=True)
     note = (f"\nMeasured with `python3 study/contact_3d.py --sizes {a.sizes} --runs {a.runs}` on "
             f"{platform.machine()}, {os.cpu_count()} cores, one process.\n")
-    print(note)
-    if a.markdown:
-        with open(a.markdown, "a") as f:
-            f.write("\n".join(lines) + "\n" + note)
+    finish(a, lines, note)
 
 
 def parallel_table(a, processes):
@@ -232,10 +237,7 @@ def parallel_table(a, processes):
     note = (f"\nMeasured with `python3 study/contact_3d.py --sizes {a.sizes} --runs {a.runs} "
             f"--processes {a.processes}{' --ceiling' if a.ceiling else ''}` on {platform.machine()}, "
             f"{os.cpu_count()} cores.\n")
-    print(note)
-    if a.markdown:
-        with open(a.markdown, "a") as f:
-            f.write("\n".join(lines) + "\n" + note)
+    finish(a, lines, note)
 
 
 SCENES_2D = ["hertz-2d.prm", "hertz-2d-elastic.prm"]
@@ -281,10 +283,7 @@ def table_2d(a, processes):
             print(line, flush=True)
     note = (f"\nMeasured with `python3 study/contact_3d.py --scenes-2d --processes {a.processes}` on "
             f"{platform.machine()}, {os.cpu_count()} cores.\n")
-    print(note)
-    if a.markdown:
-        with open(a.markdown, "a") as f:
-            f.write("\n".join(lines) + "\n" + note)
+    finish(a, lines, note)
 
 
 if __name__ == "__main__":
