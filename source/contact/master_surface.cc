@@ -1405,12 +1405,13 @@ namespace glide
   {
     Projection p;
     p.failed = true;
-    if (dim != 2 || fraction > 0. || polynomial_degree != 1 ||
-        piece >= pieces.size() || partner >= pieces.size() || piece == partner)
+    if (dim != 2 || fraction > 0. || piece >= pieces.size() ||
+        partner >= pieces.size() || piece == partner)
       return p;
-    const auto whole = [&](const Piece &q) {
+    const unsigned int deg   = polynomial_degree;
+    const auto         whole = [&](const Piece &q) {
       return q.kind == PieceKind::lagrange && q.mirror_node < 0 &&
-             facets[q.facet].nodes.size() == 2;
+             facets[q.facet].nodes.size() == deg + 1;
     };
     const Piece &a = pieces[piece];
     const Piece &b = pieces[partner];
@@ -1422,23 +1423,30 @@ namespace glide
     // (the chain's orientation), so that the normals agree in sense.
     int          v  = -1;
     unsigned int at = 0;
-    if (na[1] == nb[0])
+    if (na[deg] == nb[0])
       {
-        v  = na[1];
+        v  = na[deg];
         at = 1;
       }
-    else if (na[0] == nb[1])
+    else if (na[0] == nb[deg])
       {
         v  = na[0];
         at = 0;
       }
     if (v < 0)
       return p;
+    // Each facet's normal at the shared node, from its tangent there (a
+    // quadratic facet's end tangent; a straight facet's only one).
     Tensor<1, dim> m;
-    for (const auto *f : {&na, &nb})
+    for (const auto &[f, end] :
+         {std::make_pair(&na, at), std::make_pair(&nb, 1 - at)})
       {
-        const Tensor<1, dim> t = x[(*f)[1]] - x[(*f)[0]];
-        Tensor<1, dim>       n;
+        std::array<double, 3> N, dN;
+        lagrange(deg, static_cast<double>(end), N.data(), dN.data());
+        Tensor<1, dim> t;
+        for (unsigned int i = 0; i <= deg; ++i)
+          t += dN[i] * x[(*f)[i]];
+        Tensor<1, dim> n;
         n[0] = t[1];
         n[1] = -t[0];
         m += n / t.norm();
@@ -1841,23 +1849,33 @@ namespace glide
     std::array<Fad, dim> s;
     for (unsigned int d = 0; d < dim; ++d)
       s[d] = Fad(n, d, xs[d]);
-    std::array<Fad, dim> m = {};
+    // Each facet's normal at the shared node (project_at_vertex()): piece
+    // p.piece ends there at s = p.xi[0], its partner at the other end.
+    const unsigned int   deg = polynomial_degree;
+    const unsigned int   at  = static_cast<unsigned int>(p.xi[0]);
+    std::array<Fad, dim> m   = {};
     for (const int q : {static_cast<int>(p.piece), p.partner})
       {
-        const auto &f  = facets[pieces[q].facet].nodes;
-        const auto &x0 = xl[slot.at(f[0])];
-        const auto &x1 = xl[slot.at(f[1])];
-        const Fad   tx = x1[0] - x0[0], ty = x1[1] - x0[1];
-        const Fad   len = sqrt(tx * tx + ty * ty);
+        const auto  &f   = facets[pieces[q].facet].nodes;
+        const double end = q == static_cast<int>(p.piece) ? at : 1. - at;
+        std::array<double, 3> N, dN;
+        lagrange(deg, end, N.data(), dN.data());
+        Fad tx = 0., ty = 0.;
+        for (unsigned int i = 0; i <= deg; ++i)
+          {
+            const auto &xi = xl[slot.at(f[i])];
+            tx += dN[i] * xi[0];
+            ty += dN[i] * xi[1];
+          }
+        const Fad len = sqrt(tx * tx + ty * ty);
         m[0] += ty / len;
         m[1] -= tx / len;
       }
     const Fad            mn  = sqrt(m[0] * m[0] + m[1] * m[1]);
     std::array<Fad, dim> nrm = {{m[0] / mn, m[1] / mn}};
-    const unsigned int   v =
-      facets[pieces[p.piece].facet].nodes[static_cast<unsigned int>(p.xi[0])];
-    const auto &xv = xl[slot.at(v)];
-    Fad         g  = 0.;
+    const unsigned int   v   = facets[pieces[p.piece].facet].nodes[at * deg];
+    const auto          &xv  = xl[slot.at(v)];
+    Fad                  g   = 0.;
     for (unsigned int d = 0; d < dim; ++d)
       g += (s[d] - xv[d]) * nrm[d];
 

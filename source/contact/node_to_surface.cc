@@ -355,7 +355,7 @@ namespace glide
         after << " slave node(s) held on one master facet in this step (their "
                  "projection alternated between facets meeting at a corner; "
                  "the gap is measured to that facet's plane, or, between "
-                 "two straight facets of a 2D master, along their mean "
+                 "two facets of a 2D faceted master, along their mean "
                  "normal at the vertex they share; at most "
               << difference << " from the free projection's, at most "
               << overshoot << " past the facet's end)";

@@ -526,6 +526,93 @@ TEST(MasterSurface, HeldAtAVertexAlongTheMeanNormal)
                  .found);
 }
 
+// Issue 12 / R16.2: the vertex hold on quadratic facets (degree 2, f = 0).
+// Each facet's normal at the shared vertex comes from its own end tangent
+// (x'(1) = x_0 - 4 x_m + 3 x_1 for the facet that ends there, x'(0) =
+// -3 x_0 + 4 x_m - x_1 for the one that starts there); g = (x_s - x_v) . b
+// with b their unit mean, whichever facet is named first; the gradient
+// with respect to the slave node and the five master nodes of the two
+// facets is that of this formula (central differences), and the force
+// acts along b on the slave node and against it on the vertex node.
+// Before, a quadratic facet was held on one facet only, which tilts the
+// force by half the angle between the end tangents.
+TEST(MasterSurface, HeldAtAVertexOfQuadraticFacetsAlongTheMeanEndNormal)
+{
+  Fixture<2>  s(ball_on_block(2, 0., 2, "hard"), "vertex_q2.prm");
+  const auto  ball   = master_of<2>(s, "ball.curved", 0.);
+  const auto &x      = ball->get_positions();
+  const auto &nodes  = ball->get_nodes();
+  const auto &facets = ball->get_facets();
+  const std::array<types::global_dof_index, 2> slave_dofs{{0, 1}};
+  // The formula, with the slave point and the two facets' nodes (facet
+  // i: q[1], q[2], q[3]; facet j: q[3], q[4], q[5]) as arguments.
+  const auto unit     = [](const Tensor<1, 2> &a) { return a / a.norm(); };
+  const auto bisector = [&](const std::array<Point<2>, 6> &q) {
+    const Tensor<1, 2> ti = q[1] - 4. * q[2] + 3. * q[3];
+    const Tensor<1, 2> tj = -3. * q[3] + 4. * q[4] - q[5];
+    return unit(unit(Tensor<1, 2>({ti[1], -ti[0]})) +
+                unit(Tensor<1, 2>({tj[1], -tj[0]})));
+  };
+  const auto gap = [&](const std::array<Point<2>, 6> &q) {
+    return (q[0] - q[3]) * bisector(q);
+  };
+  unsigned int corners = 0;
+  for (unsigned int i = 0; i < facets.size(); ++i)
+    {
+      const int j = facets[i].neighbours[1];
+      if (j < 0)
+        continue;
+      ASSERT_EQ(facets[i].nodes.size(), 3u);
+      const auto &fi = facets[i].nodes;
+      const auto &fj = facets[j].nodes;
+      ASSERT_EQ(fi[2], fj[0]);
+      const std::array<int, 6> node{
+        {-1, int(fi[0]), int(fi[1]), int(fi[2]), int(fj[1]), int(fj[2])}};
+      std::array<Point<2>, 6> q;
+      for (unsigned int k = 1; k < 6; ++k)
+        q[k] = x[node[k]];
+      const Tensor<1, 2> b = bisector(q);
+      const double       h = ball->facet_size();
+      const Tensor<1, 2> t = unit(q[3] - q[1]);
+      q[0]                 = q[3] + 0.01 * h * b + 0.2 * h * t;
+      const Point<2> xs    = q[0];
+      for (const auto &[p1, p2] :
+           {std::pair{i, unsigned(j)}, std::pair{unsigned(j), i}})
+        {
+          const auto p = ball->project_at_vertex(p1, p2, xs);
+          ASSERT_TRUE(p.found) << i;
+          EXPECT_NEAR(p.gap, gap(q), 1e-14);
+          EXPECT_NEAR((p.normal - b).norm(), 0., 1e-14);
+          MasterSurface<2>::Linearization l;
+          ball->linearize(p, xs, slave_dofs, l);
+          EXPECT_NEAR(l.gap, p.gap, 1e-14);
+          for (unsigned int k = 0; k < 6; ++k)
+            for (unsigned int d = 0; d < 2; ++d)
+              {
+                const auto dof =
+                  k == 0 ? slave_dofs[d] : nodes[node[k]].dofs[d];
+                const auto at = std::find(l.dofs.begin(), l.dofs.end(), dof);
+                ASSERT_NE(at, l.dofs.end()) << "node " << k;
+                auto plus = q, minus = q;
+                plus[k][d] += 1e-7 * h;
+                minus[k][d] -= 1e-7 * h;
+                const double fd = (gap(plus) - gap(minus)) / (2e-7 * h);
+                EXPECT_NEAR(l.dgap(at - l.dofs.begin()), fd, 1e-6)
+                  << i << " node " << k << " " << d;
+              }
+          for (unsigned int d = 0; d < 2; ++d)
+            {
+              EXPECT_NEAR(l.force(d), b[d], 1e-14);
+              const auto at =
+                std::find(l.dofs.begin(), l.dofs.end(), nodes[fi[2]].dofs[d]);
+              EXPECT_NEAR(l.force(at - l.dofs.begin()), -b[d], 1e-14);
+            }
+        }
+      ++corners;
+    }
+  EXPECT_GE(corners, 3u);
+}
+
 // Issue 12: Contact::held_gap_error(), by which the driver rejects a step
 // whose held node left the corner it alternated at. A slave node held on
 // the piece its free projection finds has the free gap (0); held on a
