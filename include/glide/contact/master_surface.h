@@ -157,7 +157,7 @@ namespace glide
       dealii::Tensor<1, dim>    normal;
       dealii::Point<dim>        point;
       /// Held at the vertex that piece shares with piece `partner` (2D,
-      /// faceted linear facets; project_at_vertex()); -1: not.
+      /// faceted facets; project_at_vertex()); -1: not.
       int partner = -1;
     };
     /// Gap and contact force direction with their derivatives with respect
@@ -267,11 +267,12 @@ namespace glide
 
     /// The gap of @p x to the vertex that pieces @p piece and @p partner
     /// share, along their mean normal n_v = (n_a + n_b) / |n_a + n_b|:
-    /// g = (x - x_v) . n_v, symmetric in the two facets; for a slave node
-    /// whose projection alternates between two faceted (f = 0) linear
-    /// facets of a 2D master at a convex or concave vertex. Not found
-    /// (failed) where the pieces are not two such facets sharing a node
-    /// off any symmetry plane.
+    /// g = (x - x_v) . n_v, symmetric in the two facets, each facet's
+    /// normal n_a, n_b taken at x_v (from its end tangent there, for
+    /// quadratic facets); for a slave node whose projection alternates
+    /// between two faceted (f = 0) facets of a 2D master at a convex or
+    /// concave vertex. Not found (failed) where the pieces are not two
+    /// such facets sharing a node off any symmetry plane.
     Projection
     project_at_vertex(const unsigned int        piece,
                       const unsigned int        partner,
