@@ -167,6 +167,7 @@ namespace glide
           {
             auto &into = found.at(p);
             into.area += w * from.area;
+            into.measure += std::abs(w) * from.measure;
             into.normal += w * from.normal;
             into.hanging.emplace_back(hanging, w);
             for (const auto &[b, m] : from.mass)
@@ -281,11 +282,16 @@ namespace glide
                       mapping.transform_unit_to_real_cell(cell,
                                                           unit_points[k[0]]);
                     for (unsigned int q = 0; q < quadrature.size(); ++q)
-                      node.area +=
-                        face_values.shape_value(k[0], q) * face_values.JxW(q) *
-                        (axisymmetric ? 2 * numbers::PI *
-                                          face_values.quadrature_point(q)[0] :
-                                        1.);
+                      {
+                        const double dA =
+                          face_values.JxW(q) *
+                          (axisymmetric ? 2 * numbers::PI *
+                                            face_values.quadrature_point(q)[0] :
+                                          1.);
+                        node.area += face_values.shape_value(k[0], q) * dA;
+                        node.measure +=
+                          std::abs(face_values.shape_value(k[0], q)) * dA;
+                      }
                     node.size += cell->face(f)->diameter();
                     ++n_facets[cell_dofs[k[0]]];
                     // For surface to surface: the area-weighted normal
@@ -1228,7 +1234,14 @@ namespace glide
               local.push_back(s[i].x[d]);
             local.push_back(s[i].gap);
             local.push_back(nodal[i]);
-            local.push_back(nodal[i] / pair.nodes[i].area);
+            // A node without tributary area (the corner node on the axis
+            // of a quadratic axisymmetric facet: int N r dr = 0) has no
+            // pressure of its own; marked here, it gets its nearest
+            // neighbour's below.
+            const auto &node = pair.nodes[i];
+            local.push_back(node.area > 1e-8 * node.measure ?
+                              nodal[i] / node.area :
+                              std::numeric_limits<double>::quiet_NaN());
             local.push_back(f[i].closed ? 1. : 0.);
             local.push_back(pair.formulation->slip()[i]);
             for (unsigned int d = 0; d < dim; ++d)
@@ -1263,6 +1276,19 @@ namespace glide
               for (unsigned int a = 0; a < dim - 1; ++a)
                 n.CSLIP_components[a] = *v++;
               fields.nodes.push_back(n);
+            }
+        for (auto &n : fields.nodes)
+          if (std::isnan(n.CPRESS))
+            {
+              double best = std::numeric_limits<double>::infinity();
+              n.CPRESS    = 0.;
+              for (const auto &m : fields.nodes)
+                if (!std::isnan(m.CPRESS) && &m != &n &&
+                    n.X.distance(m.X) < best)
+                  {
+                    best     = n.X.distance(m.X);
+                    n.CPRESS = m.CPRESS;
+                  }
             }
         result.push_back(std::move(fields));
       }

@@ -26,7 +26,10 @@ namespace glide
     dealii::Point<dim>                               X;
     std::array<dealii::types::global_dof_index, dim> dofs;
     double area = 0.; ///< tributary area int N_a dA
-    double size = 0.; ///< mean size of the adjacent slave facets
+    /// int |N_a| dA: positive where the tributary area vanishes, the corner
+    /// node on the axis of a quadratic axisymmetric facet (int N r dr = 0)
+    double measure = 0.;
+    double size    = 0.; ///< mean size of the adjacent slave facets
     /// First multiplier of the node's block (hard enforcement: the normal
     /// force; friction will add dim - 1 tangential ones).
     dealii::types::global_dof_index multiplier =
