@@ -318,6 +318,23 @@ namespace glide
     slave_modulus = Utilities::MPI::min(slave_modulus, comm);
     if (!node_based)
       condense_hanging_nodes(found, n_facets);
+    // A node without tributary area (the corner node on the axis of a
+    // quadratic axisymmetric facet: int N r dr = 0) carries no share of
+    // any pressure, and is no constraint point (as a hanging node): its
+    // NCP constant c = E_pair A / h was round-off, so were its open/closed
+    // decisions, and its surface-to-surface averaging region (int N_i N_k
+    // dA / int N_i dA) divided by zero; the node switched in every
+    // iteration and steps were cut back. Mortar keeps it: its dual basis
+    // is built on all nodes of the slave facets.
+    if (!node_based && p.formulation != "mortar")
+      for (auto it = found.begin(); it != found.end();)
+        if (it->second.area <= 1e-8 * it->second.measure)
+          {
+            n_facets.erase(it->first);
+            it = found.erase(it);
+          }
+        else
+          ++it;
     std::vector<SlaveNode<dim>> nodes;
     for (auto &[dof, node] : found)
       if (owned.is_element(dof))
