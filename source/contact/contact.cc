@@ -319,8 +319,10 @@ namespace glide
     if (!node_based)
       condense_hanging_nodes(found, n_facets);
     // A node without tributary area (the corner node on the axis of a
-    // quadratic axisymmetric facet: int N r dr = 0) carries no share of
-    // any pressure, and is no constraint point (as a hanging node): its
+    // quadratic axisymmetric facet: int N r dr = 0 on a straight facet, a
+    // few 1e-3 of int |N| r dr on a curved one) carries no share of any
+    // pressure worth the name, and is no constraint point (as a hanging
+    // node): its
     // NCP constant c = E_pair A / h was round-off, so were its open/closed
     // decisions, and its surface-to-surface averaging region (int N_i N_k
     // dA / int N_i dA) divided by zero; the node switched in every
@@ -328,7 +330,7 @@ namespace glide
     // is built on all nodes of the slave facets.
     if (!node_based && p.formulation != "mortar")
       for (auto it = found.begin(); it != found.end();)
-        if (it->second.area <= 1e-8 * it->second.measure)
+        if (it->second.without_area())
           {
             n_facets.erase(it->first);
             it = found.erase(it);
@@ -1256,9 +1258,9 @@ namespace glide
             // pressure of its own; marked here, it gets its nearest
             // neighbour's below.
             const auto &node = pair.nodes[i];
-            local.push_back(node.area > 1e-8 * node.measure ?
-                              nodal[i] / node.area :
-                              std::numeric_limits<double>::quiet_NaN());
+            local.push_back(node.without_area() ?
+                              std::numeric_limits<double>::quiet_NaN() :
+                              nodal[i] / node.area);
             local.push_back(f[i].closed ? 1. : 0.);
             local.push_back(pair.formulation->slip()[i]);
             for (unsigned int d = 0; d < dim; ++d)

@@ -29,7 +29,17 @@ namespace glide
     /// int |N_a| dA: positive where the tributary area vanishes, the corner
     /// node on the axis of a quadratic axisymmetric facet (int N r dr = 0)
     double measure = 0.;
-    double size    = 0.; ///< mean size of the adjacent slave facets
+    /// Whether the node has no tributary area of its own: int N_a dA at
+    /// most a tenth of int |N_a| dA. Only the corner node on the axis of a
+    /// quadratic axisymmetric facet (0 on a straight facet, a few 1e-3 of
+    /// it on a curved one); any other node has at least 0.44 of it (a
+    /// corner of a quadratic 3D face; 2/3 in 2D, 1 for degree 1).
+    bool
+    without_area() const
+    {
+      return !(area > 0.1 * measure);
+    }
+    double size = 0.; ///< mean size of the adjacent slave facets
     /// First multiplier of the node's block (hard enforcement: the normal
     /// force; friction will add dim - 1 tangential ones).
     dealii::types::global_dof_index multiplier =
