@@ -450,6 +450,53 @@ TEST(MasterSurface, SpringDirectionIsContinuousAtFacetedCorners)
   EXPECT_EQ(l.spring.size(), 0u);
 }
 
+namespace
+{
+  /// The checks of a vertex hold @p p of the slave point q[0] (the other
+  /// points of @p q the master nodes @p node): the linearization's gap is
+  /// p.gap, its gradient that of @p gap over the points (central
+  /// differences at h 1e-7), and the force acts along @p b on the slave
+  /// node and against it on the vertex node @p vertex.
+  template <std::size_t n, typename Gap>
+  void
+  expect_vertex_hold(const MasterSurface<2>                       &ball,
+                     const MasterSurface<2>::Projection           &p,
+                     const std::array<Point<2>, n>                &q,
+                     const std::array<int, n>                     &node,
+                     const Gap                                    &gap,
+                     const Tensor<1, 2>                           &b,
+                     const unsigned int                            vertex,
+                     const std::array<types::global_dof_index, 2> &slave_dofs,
+                     const unsigned int                            i)
+  {
+    const auto                     &nodes = ball.get_nodes();
+    const double                    h     = ball.facet_size();
+    MasterSurface<2>::Linearization l;
+    ball.linearize(p, q[0], slave_dofs, l);
+    EXPECT_NEAR(l.gap, p.gap, 1e-14);
+    for (unsigned int k = 0; k < n; ++k)
+      for (unsigned int d = 0; d < 2; ++d)
+        {
+          const auto dof = k == 0 ? slave_dofs[d] : nodes[node[k]].dofs[d];
+          const auto at  = std::find(l.dofs.begin(), l.dofs.end(), dof);
+          ASSERT_NE(at, l.dofs.end()) << "node " << k;
+          auto plus = q, minus = q;
+          plus[k][d] += 1e-7 * h;
+          minus[k][d] -= 1e-7 * h;
+          const double fd = (gap(plus) - gap(minus)) / (2e-7 * h);
+          EXPECT_NEAR(l.dgap(at - l.dofs.begin()), fd, 1e-6)
+            << i << " node " << k << " " << d;
+        }
+    for (unsigned int d = 0; d < 2; ++d)
+      {
+        EXPECT_NEAR(l.force(d), b[d], 1e-14);
+        const auto at =
+          std::find(l.dofs.begin(), l.dofs.end(), nodes[vertex].dofs[d]);
+        EXPECT_NEAR(l.force(at - l.dofs.begin()), -b[d], 1e-14);
+      }
+  }
+} // namespace
+
 // Issue 12 / R16.2: a slave node held at the vertex between the two
 // facets it alternated between (MasterSurface::project_at_vertex()): the
 // gap is measured along the unit bisector b of the facets' normals,
@@ -462,7 +509,6 @@ TEST(MasterSurface, HeldAtAVertexAlongTheMeanNormal)
   Fixture<2>  s(ball_on_block(2, 0., 1, "hard"), "vertex.prm");
   const auto  ball   = master_of<2>(s, "ball.curved", 0.);
   const auto &x      = ball->get_positions();
-  const auto &nodes  = ball->get_nodes();
   const auto &facets = ball->get_facets();
   const std::array<types::global_dof_index, 2> slave_dofs{{0, 1}};
   unsigned int                                 corners = 0;
@@ -478,9 +524,6 @@ TEST(MasterSurface, HeldAtAVertexAlongTheMeanNormal)
           ASSERT_TRUE(p.found) << i;
           EXPECT_NEAR(p.gap, (xs - x[v]) * b, 1e-14);
           EXPECT_NEAR((p.normal - b).norm(), 0., 1e-14);
-          MasterSurface<2>::Linearization l;
-          ball->linearize(p, xs, slave_dofs, l);
-          EXPECT_NEAR(l.gap, p.gap, 1e-14);
           // The formula, with the four points as arguments.
           const auto gap = [](const std::array<Point<2>, 4> &q) {
             const auto normal = [](const Point<2> &p0, const Point<2> &p1) {
@@ -492,27 +535,7 @@ TEST(MasterSurface, HeldAtAVertexAlongTheMeanNormal)
           };
           const std::array<Point<2>, 4> q{{xs, x[a], x[v], x[c]}};
           const std::array<int, 4>      node{{-1, int(a), int(v), int(c)}};
-          for (unsigned int k = 0; k < 4; ++k)
-            for (unsigned int d = 0; d < 2; ++d)
-              {
-                const auto dof =
-                  k == 0 ? slave_dofs[d] : nodes[node[k]].dofs[d];
-                const auto at = std::find(l.dofs.begin(), l.dofs.end(), dof);
-                ASSERT_NE(at, l.dofs.end()) << "node " << k;
-                auto plus = q, minus = q;
-                plus[k][d] += 1e-7 * h;
-                minus[k][d] -= 1e-7 * h;
-                const double fd = (gap(plus) - gap(minus)) / (2e-7 * h);
-                EXPECT_NEAR(l.dgap(at - l.dofs.begin()), fd, 1e-6)
-                  << i << " node " << k << " " << d;
-              }
-          for (unsigned int d = 0; d < 2; ++d)
-            {
-              EXPECT_NEAR(l.force(d), b[d], 1e-14);
-              const auto at =
-                std::find(l.dofs.begin(), l.dofs.end(), nodes[v].dofs[d]);
-              EXPECT_NEAR(l.force(at - l.dofs.begin()), -b[d], 1e-14);
-            }
+          expect_vertex_hold(*ball, p, q, node, gap, b, v, slave_dofs, i);
         }
       // Facets that do not meet: no vertex.
       EXPECT_FALSE(ball->project_at_vertex(i, i, xs).found);
@@ -541,7 +564,6 @@ TEST(MasterSurface, HeldAtAVertexOfQuadraticFacetsAlongTheMeanEndNormal)
   Fixture<2>  s(ball_on_block(2, 0., 2, "hard"), "vertex_q2.prm");
   const auto  ball   = master_of<2>(s, "ball.curved", 0.);
   const auto &x      = ball->get_positions();
-  const auto &nodes  = ball->get_nodes();
   const auto &facets = ball->get_facets();
   const std::array<types::global_dof_index, 2> slave_dofs{{0, 1}};
   // The formula, with the slave point and the two facets' nodes (facet
@@ -583,30 +605,7 @@ TEST(MasterSurface, HeldAtAVertexOfQuadraticFacetsAlongTheMeanEndNormal)
           ASSERT_TRUE(p.found) << i;
           EXPECT_NEAR(p.gap, gap(q), 1e-14);
           EXPECT_NEAR((p.normal - b).norm(), 0., 1e-14);
-          MasterSurface<2>::Linearization l;
-          ball->linearize(p, xs, slave_dofs, l);
-          EXPECT_NEAR(l.gap, p.gap, 1e-14);
-          for (unsigned int k = 0; k < 6; ++k)
-            for (unsigned int d = 0; d < 2; ++d)
-              {
-                const auto dof =
-                  k == 0 ? slave_dofs[d] : nodes[node[k]].dofs[d];
-                const auto at = std::find(l.dofs.begin(), l.dofs.end(), dof);
-                ASSERT_NE(at, l.dofs.end()) << "node " << k;
-                auto plus = q, minus = q;
-                plus[k][d] += 1e-7 * h;
-                minus[k][d] -= 1e-7 * h;
-                const double fd = (gap(plus) - gap(minus)) / (2e-7 * h);
-                EXPECT_NEAR(l.dgap(at - l.dofs.begin()), fd, 1e-6)
-                  << i << " node " << k << " " << d;
-              }
-          for (unsigned int d = 0; d < 2; ++d)
-            {
-              EXPECT_NEAR(l.force(d), b[d], 1e-14);
-              const auto at =
-                std::find(l.dofs.begin(), l.dofs.end(), nodes[fi[2]].dofs[d]);
-              EXPECT_NEAR(l.force(at - l.dofs.begin()), -b[d], 1e-14);
-            }
+          expect_vertex_hold(*ball, p, q, node, gap, b, fi[2], slave_dofs, i);
         }
       ++corners;
     }
