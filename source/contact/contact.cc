@@ -322,21 +322,22 @@ namespace glide
     // quadratic axisymmetric facet: int N r dr = 0 on a straight facet, a
     // few 1e-3 of int |N| r dr on a curved one) carries no share of any
     // pressure worth the name, and is no constraint point (as a hanging
-    // node): its
-    // NCP constant c = E_pair A / h was round-off, so were its open/closed
-    // decisions, and its surface-to-surface averaging region (int N_i N_k
-    // dA / int N_i dA) divided by zero; the node switched in every
-    // iteration and steps were cut back. Mortar keeps it: its dual basis
-    // is built on all nodes of the slave facets.
+    // node): its NCP constant c = E_pair A / h was round-off, so were its
+    // open/closed decisions, and its surface-to-surface averaging region
+    // (int N_i N_k dA / int N_i dA) divided by zero; the node switched in
+    // every iteration and steps were cut back. Mortar keeps it: its dual
+    // basis is built on all nodes of the slave facets.
     if (!node_based && p.formulation != "mortar")
-      for (auto it = found.begin(); it != found.end();)
-        if (it->second.without_area())
-          {
-            n_facets.erase(it->first);
-            it = found.erase(it);
-          }
-        else
-          ++it;
+      {
+        for (auto it = found.begin(); it != found.end();)
+          if (it->second.without_area())
+            {
+              n_facets.erase(it->first);
+              it = found.erase(it);
+            }
+          else
+            ++it;
+      }
     std::vector<SlaveNode<dim>> nodes;
     for (auto &[dof, node] : found)
       if (owned.is_element(dof))
