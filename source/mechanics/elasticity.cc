@@ -13,6 +13,7 @@
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -1139,7 +1140,7 @@ namespace glide
   } // namespace
 
   template <int dim>
-  std::vector<std::vector<std::string>>
+  std::vector<std::vector<typename Elasticity<dim>::FreeMotion>>
   Elasticity<dim>::free_motions() const
   {
     // The rigid-body motions of a body: translations, and rotations
@@ -1230,8 +1231,8 @@ namespace glide
             }
     Utilities::MPI::sum(gram, comm, gram);
 
-    const char                           *axis[] = {"x", "y", "z"};
-    std::vector<std::vector<std::string>> result(n_bodies);
+    const char                          *axis[] = {"x", "y", "z"};
+    std::vector<std::vector<FreeMotion>> result(n_bodies);
     for (unsigned int b = 0; b < n_bodies; ++b)
       {
         if (scene.bodies[b].rigid)
@@ -1244,9 +1245,11 @@ namespace glide
         // translation with a pivot of order 1; rounding is 1e-16.
         for (const auto &v : null_space(G, 1e-10))
           {
+            FreeMotion motion;
             if (axisymmetric)
               {
-                result[b].push_back("translation along the axis (y)");
+                motion.text = "translation along the axis (y)";
+                result[b].push_back(motion);
                 continue;
               }
             Point<dim> center;
@@ -1275,16 +1278,15 @@ namespace glide
                       along = d;
                     }
                 if (nonzero == 1)
-                  result[b].push_back(std::string("translation in ") +
-                                      axis[along]);
+                  motion.text = std::string("translation in ") + axis[along];
                 else
                   {
                     std::string direction;
                     for (unsigned int d = 0; d < dim; ++d)
                       direction += (d ? ", " : "") + short_number(t[d]);
-                    result[b].push_back("translation along (" + direction +
-                                        ")");
+                    motion.text = "translation along (" + direction + ")";
                   }
+                result[b].push_back(motion);
                 continue;
               }
             // The points that do not move: t + w x (x - c) = 0, i.e.
@@ -1295,21 +1297,83 @@ namespace glide
             const Tensor<1, 3> p = cross_product_3d(w, t3) / (w * w);
             std::string        point;
             for (unsigned int d = 0; d < dim; ++d)
-              point += (d ? ", " : "") + short_number(center[d] + p[d]);
+              {
+                point += (d ? ", " : "") + short_number(center[d] + p[d]);
+                motion.point[d] = center[d] + p[d];
+              }
+            motion.rotation = true;
+            motion.axis     = w / w.norm();
             if (dim == 2)
-              result[b].push_back("rotation about z around (" + point + ")");
+              motion.text = "rotation about z around (" + point + ")";
             else
               {
-                const Tensor<1, 3> n = w / w.norm();
-                std::string        direction;
+                std::string direction;
                 for (unsigned int d = 0; d < 3; ++d)
-                  direction += (d ? ", " : "") + short_number(n[d]);
-                result[b].push_back("rotation about the axis along (" +
-                                    direction + ") through (" + point + ")");
+                  direction += (d ? ", " : "") + short_number(motion.axis[d]);
+                motion.text = "rotation about the axis along (" + direction +
+                              ") through (" + point + ")";
               }
+            result[b].push_back(motion);
           }
       }
     return result;
+  }
+
+  template <int dim>
+  std::vector<std::string>
+  Elasticity<dim>::round_about(const std::vector<std::string> &names,
+                               const FreeMotion               &m) const
+  {
+    // Per surface: the largest |v . n| and |v| over its faces, v = axis x
+    // (x - point) the turn's velocity at the face's centre and n the
+    // normal of the face's straight chord (the perpendicular bisector of a
+    // chord of a circle passes through its centre, so a cylinder's facets
+    // give 0 up to round-off).
+    std::vector<double> normal_part(names.size(), 0.), size(names.size(), 0.);
+    for (unsigned int k = 0; k < names.size(); ++k)
+      {
+        const auto &ids = mesh.surface(names[k], "Contact pairs");
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            for (const auto f : cell->face_indices())
+              if (cell->face(f)->at_boundary() &&
+                  ids.count(cell->face(f)->boundary_id()))
+                {
+                  const auto       face = cell->face(f);
+                  Tensor<1, 3>     n, r;
+                  const Point<dim> x = face->center();
+                  if constexpr (dim == 2)
+                    {
+                      const Tensor<1, dim> t =
+                        face->vertex(1) - face->vertex(0);
+                      n[0] = t[1];
+                      n[1] = -t[0];
+                    }
+                  else
+                    {
+                      const Tensor<1, dim> d1 =
+                        face->vertex(3) - face->vertex(0);
+                      const Tensor<1, dim> d2 =
+                        face->vertex(2) - face->vertex(1);
+                      n = cross_product_3d(Tensor<1, 3>(d1), Tensor<1, 3>(d2));
+                    }
+                  if (!(n.norm() > 0.))
+                    continue;
+                  n /= n.norm();
+                  for (unsigned int d = 0; d < dim; ++d)
+                    r[d] = x[d] - m.point[d];
+                  const Tensor<1, 3> v = cross_product_3d(m.axis, r);
+                  normal_part[k] = std::max(normal_part[k], std::abs(v * n));
+                  size[k]        = std::max(size[k], v.norm());
+                }
+      }
+    Utilities::MPI::max(normal_part, comm, normal_part);
+    Utilities::MPI::max(size, comm, size);
+    std::vector<std::string> round;
+    for (unsigned int k = 0; k < names.size(); ++k)
+      if (size[k] > 0. && normal_part[k] <= 0.01 * size[k])
+        round.push_back(names[k]);
+    return round;
   }
 
   template <int dim>
@@ -1337,8 +1401,9 @@ namespace glide
 
 
     // Bodies in a contact pair: contact may hold them (if it closes).
-    std::set<std::string> in_contact;
-    bool                  node_set_slave = false;
+    std::set<std::string>                           in_contact;
+    std::map<std::string, std::vector<std::string>> contact_surfaces;
+    bool                                            node_set_slave = false;
     for (const auto &cp : scene.contact_pairs)
       for (const auto &list : {cp.slave, cp.master})
         for (const auto &surface : Utilities::split_string_list(list, ','))
@@ -1347,7 +1412,15 @@ namespace glide
               node_set_slave = true;
             const auto dot = surface.find('.');
             if (dot != std::string::npos)
-              in_contact.insert(surface.substr(0, dot));
+              {
+                const auto body = surface.substr(0, dot);
+                in_contact.insert(body);
+                auto &names = contact_surfaces[body];
+                if (mesh.has_surface(surface) &&
+                    std::find(names.begin(), names.end(), surface) ==
+                      names.end())
+                  names.push_back(surface);
+              }
           }
     const auto motions = free_motions();
     holding_hints.clear();
@@ -1360,18 +1433,39 @@ namespace glide
           list += (i == 0                     ? "" :
                    i + 1 == motions[b].size() ? " and " :
                                                 ", ") +
-                  motions[b][i];
+                  motions[b][i].text;
         const std::string &name = scene.bodies[b].name;
         if (in_contact.count(name) || node_set_slave)
           {
-            holding_hints.push_back(
+            std::string hint =
               "body '" + name + "' is held against its " + list +
               " only by contact: while that contact is open nothing holds "
               "it, and the Newton systems are singular. Let the contact "
               "close from the first load step (start in contact or move "
               "the body into it by a prescribed displacement), or add a "
               "boundary condition that stops these motions (e.g. a "
-              "symmetry condition).");
+              "symmetry condition).";
+            // A turn that frictionless contact cannot resist even when it
+            // is closed: every contact force on a round surface points at
+            // its axis (doc/theory/nonlinear-solution.md, "A round body
+            // turning about its centre").
+            for (const auto &m : motions[b])
+              if (m.rotation)
+                for (const auto &surface :
+                     round_about(contact_surfaces[name], m))
+                  hint +=
+                    " Frictionless contact cannot hold its " + m.text +
+                    " firmly even where it is closed: its contact surface '" +
+                    surface +
+                    "' is round about that axis, so every contact force on "
+                    "it points at the axis but for the deformation of the "
+                    "contact zone and the facets of the mesh, which resist "
+                    "the turn weakly and unevenly; Newton may wander and "
+                    "cycle (most with a faceted or quadratic master "
+                    "surface). Hold the turn, e.g. with a symmetry or "
+                    "displacement condition on a node set of one more point "
+                    "on the axis.";
+            holding_hints.push_back(hint);
             continue;
           }
         throw InputError(

@@ -196,11 +196,33 @@ namespace glide
     std::string
     holding_hint() const;
 
-    /// The rigid-body motions of each body that no Dirichlet condition
-    /// stops, described for people ("translation in x", "rotation about
-    /// z around (1, 0.5)"); empty for a held body and for rigid bodies.
-    std::vector<std::vector<std::string>>
+    /// A rigid-body motion of a body that no Dirichlet condition stops.
+    struct FreeMotion
+    {
+      /// For people: "translation in x", "rotation about z around (1,
+      /// 0.5)".
+      std::string text;
+      /// A rotation (not a translation): about `axis` (unit; z in 2D)
+      /// through `point`.
+      bool                 rotation = false;
+      dealii::Point<dim>   point;
+      dealii::Tensor<1, 3> axis;
+    };
+
+    /// The free motions of each body; empty for a held body and for rigid
+    /// bodies.
+    std::vector<std::vector<FreeMotion>>
     free_motions() const;
+
+    /// Of the surfaces @p names (<body>.<surface>, on any process), those
+    /// that are round about the rotation @p m: the velocity of the turn
+    /// has no component along any face normal beyond 1 % of its size
+    /// (every face normal points at the axis, e.g. a cylinder's curved
+    /// surface and a turn about its centre). Frictionless contact on such
+    /// a surface does not resist the turn. Collective.
+    std::vector<std::string>
+    round_about(const std::vector<std::string> &names,
+                const FreeMotion               &m) const;
 
     /// The list of effects this scene computes (P4.2), for the log.
     std::vector<std::string>
