@@ -219,7 +219,10 @@ namespace glide
     /// has no component along any face normal beyond 1 % of its size
     /// (every face normal points at the axis, e.g. a cylinder's curved
     /// surface and a turn about its centre). Frictionless contact on such
-    /// a surface does not resist the turn. Collective.
+    /// a surface does not resist the turn. The axis is the one through
+    /// m.point: where translations across it are free too, the axis of a
+    /// free turn is not unique, and a surface round about another,
+    /// parallel axis is not found. Collective.
     std::vector<std::string>
     round_about(const std::vector<std::string> &names,
                 const FreeMotion               &m) const;
