@@ -678,6 +678,19 @@ def case_output_fails_on_one_process():
     check(all(f.startswith(".glide") for f in written), f"no results written ({written})")
 
 
+def check_contact_split(what, log):
+    """Issue 15: the log of a run under mpirun says that the contact pair's
+    slave nodes or its master facets lie on several processes (so that the
+    partition cuts the contact zone). Returns (processes holding slave
+    nodes, processes holding master facets), or None."""
+    split = re.search(r"(\d+) slave nodes on (\d+) of (\d+) processes; "
+                      r"the master surface's \d+ facets on (\d+) process", log)
+    check(split is not None and int(split.group(3)) > 1 and
+          (int(split.group(2)) > 1 or int(split.group(4)) > 1),
+          f"{what}: slave nodes or master facets on several processes ({split.group(0) if split else 'no'})")
+    return (int(split.group(2)), int(split.group(4))) if split else None
+
+
 def compare_with_serial(what, serial, parallel, serial_out, parallel_out, pair, rel=1e-8):
     """Issue 15: a run on several processes gives the serial run's answer:
     per step the same Newton iterations, cut-backs and active set size;
@@ -747,12 +760,7 @@ def case_robustness_mpi_matches_serial():
             serial, _, s_out = run(prm, "Output/Write VTU=false", hold, name=f"{tag}-serial", output=output)
             parallel, log, p_out = run(prm, "Output/Write VTU=false", hold, name=f"{tag}-mpi", output=output,
                                        mpi=True)
-            split = re.search(r"contact pair '\w+': \d+ slave nodes on (\d+) of (\d+) processes; "
-                              r"the master surface's \d+ facets on (\d+) process", log)
-            check(split is not None and int(split.group(2)) > 1 and
-                  (int(split.group(1)) > 1 or int(split.group(3)) > 1),
-                  f"{what}: slave nodes or master facets on several processes "
-                  f"({split.group(0) if split else 'no'})")
+            check_contact_split(what, log)
             print(f"measured: {what}: iterations {[int(r['kinsol_iterations']) for r in serial]}")
             compare_with_serial(what, serial, parallel, s_out, p_out, "hertz")
 
@@ -789,12 +797,7 @@ def case_contact_amg_mpi_matches_serial():
         parallel, log, p_out = run(scene_file(scene_name), *sets, "Linear solver/Type=amg", name=f"{tag}-mpi",
                                    mpi=True)
         check("contact multipliers eliminated" in log, f"{label}: AMG on the condensed system under mpirun")
-        split = re.search(r"(\d+) slave nodes on (\d+) of (\d+) processes; "
-                          r"the master surface's \d+ facets on (\d+) process", log)
-        check(split is not None and int(split.group(3)) > 1 and
-              (int(split.group(2)) > 1 or int(split.group(4)) > 1),
-              f"{label}: slave nodes or master facets on several processes "
-              f"({split.group(0) if split else 'no'})")
+        check_contact_split(label, log)
         check_slave_side_gathered(label, log)
         print(f"measured: {label}: GMRES iterations per step {[int(r['linear_iterations']) for r in parallel]}")
         compare_with_serial(label, serial, parallel, s_out, p_out, "hertz", rel=1e-7)
@@ -887,17 +890,13 @@ def case_contact_deformable_mpi_matches_serial():
         serial, _, s_out = run(scene_file(scene_name), "Output/Write VTU=false", *extra, name=f"{tag}-serial")
         parallel, log, p_out = run(scene_file(scene_name), "Output/Write VTU=false", *extra, name=f"{tag}-mpi",
                                    mpi=True)
-        split = re.search(r"contact pair '\w+': \d+ slave nodes on (\d+) of (\d+) processes; "
-                          r"the master surface's \d+ facets on (\d+) process", log)
-        check(split is not None and int(split.group(2)) > 1 and
-              (int(split.group(1)) > 1 or int(split.group(3)) > 1),
-              f"{what}: slave nodes or master facets on several processes ({split.group(0) if split else 'no'})")
+        split = check_contact_split(what, log)
         held = re.search(r"the master surface's (\d+) facets .*: (\d+) to (\d+)", log)
         if held:
             print(f"measured: {what}: each process holds {held.group(2)} to {held.group(3)} "
                   f"of the master's {held.group(1)} facets")
         check_slave_side_gathered(what, log)
-        if "surface to surface" in what and int(split.group(1)) > 1:
+        if "surface to surface" in what and split and split[0] > 1:
             # Slave nodes on several processes: regions must straddle them.
             cut = re.search(r"surface to surface: (\d+) averaging region\(s\) hold slave nodes of another process", log)
             check(cut is not None and int(cut.group(1)) > 0,
