@@ -5,6 +5,7 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/lac/vector.h>
 
+#include <cmath>
 #include <sstream>
 
 namespace glide
@@ -55,12 +56,23 @@ namespace glide
       }
     for (unsigned int d = 0; d < 3; ++d)
       axis[d] = p.rotation_axis[d];
+    if (!std::isfinite(axis.norm()) || !(axis.norm() > 0.))
+      throw InputError("Parameter '" + path +
+                       "/Rigid master/Rotation axis' has no finite, "
+                       "non-zero length; only its direction counts, so "
+                       "scale it (e.g. '0, 0, 1').");
     axis /= axis.norm();
     reference_normal /= reference_normal.norm();
     if (!p.translation.empty())
       translation =
         parse(p.translation, dim, path + "/Rigid master/Translation");
-    rotation = parse(p.rotation, 1, path + "/Rigid master/Rotation");
+    rotation         = parse(p.rotation, 1, path + "/Rigid master/Rotation");
+    this->path       = path + "/Rigid master";
+    translation_text = p.translation;
+    rotation_text    = p.rotation;
+    // The motion at the last load factor too, so that a motion that is
+    // not finite there is an input error before anything is written.
+    set_time(1.);
     set_time(0.);
   }
 
@@ -72,7 +84,24 @@ namespace glide
     if (translation)
       for (unsigned int d = 0; d < dim; ++d)
         u[d] = translation->value(Point<1>(t), d);
-    return {u, rotation->value(Point<1>(t))};
+    const double theta = rotation->value(Point<1>(t));
+    // A motion that is not a finite number (a division by zero, the root
+    // of a negative number, an overflow) is an input error; glide never
+    // computes with it (as CheckedFunction for the other functions).
+    if (!std::isfinite(u.norm()) || !std::isfinite(theta))
+      {
+        std::ostringstream s;
+        s << "Parameter '" << path << "/"
+          << (std::isfinite(theta) ? "Translation' = '" + translation_text :
+                                     "Rotation' = '" + rotation_text)
+          << "' is not a finite number at t = " << t << " (translation " << u
+          << ", rotation " << theta
+          << "); every value must be finite. Check the expression for a "
+             "division by zero, the root or logarithm of a negative "
+             "number, or an overflow at that load factor.";
+        throw InputError(s.str());
+      }
+    return {u, theta};
   }
 
   template <int dim>
@@ -101,6 +130,16 @@ namespace glide
     normal = rotate<dim>(reference_normal, axis, theta);
     if constexpr (dim == 3)
       cylinder_axis = rotate<dim>(Tensor<1, dim>({0., 0., 1.}), axis, theta);
+    if (!std::isfinite(Tensor<1, dim>(point).norm()) ||
+        !std::isfinite(normal.norm()))
+      {
+        std::ostringstream s;
+        s << "Parameter '" << path << "': the rigid master placed at t = " << t
+          << " is not finite (its point " << point
+          << "): 'Point', 'Rotation center', 'Translation' or 'Rotation' "
+             "overflow double precision. Use lengths of the scene's size.";
+        throw InputError(s.str());
+      }
   }
 
   template <int dim>

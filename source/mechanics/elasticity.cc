@@ -161,6 +161,9 @@ namespace glide
                                       nodes;
     std::set<types::global_dof_index> seen;
     std::vector<unsigned int>         found(points.size(), 0);
+    // Per point, the distinct vertices (their first DoF) within the
+    // tolerance that this process owns: each vertex counts once.
+    std::vector<std::set<types::global_dof_index>> owned_hits(points.size());
     // Distance to the nearest vertex of each point, for the message when
     // none is within the tolerance.
     std::vector<double> nearest(points.size(),
@@ -183,6 +186,8 @@ namespace glide
                   {
                     hit = true;
                     ++found[i];
+                    if (owned.is_element(cell->vertex_dof_index(v, 0)))
+                      owned_hits[i].insert(cell->vertex_dof_index(v, 0));
                   }
               }
             if (!ids.empty())
@@ -221,6 +226,30 @@ namespace glide
             << "/Points' or raise its 'Tolerance'.";
         throw InputError(why.str());
       }
+    // Each point selects one vertex: a tolerance wider than the mesh
+    // spacing (or a point where two bodies' vertices coincide) would apply
+    // a concentrated force several times.
+    for (unsigned int i = 0; i < points.size(); ++i)
+      if (const unsigned int n =
+            Utilities::MPI::sum(static_cast<unsigned int>(owned_hits[i].size()),
+                                comm);
+          n > 1)
+        {
+          std::ostringstream p;
+          for (unsigned int d = 0; d < points[i].size(); ++d)
+            p << (d == 0 ? "" : ", ") << points[i][d];
+          std::ostringstream why;
+          why << "Node set '" << surface << "': " << n
+              << " mesh vertices lie within 'Tolerance' = " << tol
+              << " of its point " << i + 1 << " (" << p.str()
+              << "); each point must select one vertex (a force on the node "
+                 "set would act on each of them). Lower 'Node set "
+              << surface
+              << "/Tolerance' below the mesh spacing there (where vertices "
+                 "of two bodies coincide at the point, no tolerance tells "
+                 "them apart: choose another point).";
+          throw InputError(why.str());
+        }
     require(Utilities::MPI::sum(static_cast<unsigned int>(nodes.size()), comm) >
               0,
             "Parameter '" + parameter + "' = '" + surface +

@@ -4,11 +4,13 @@
 
 #include <Amesos.h>
 #include <Amesos_BaseSolver.h>
+#include <Amesos_Mumps.h>
 #include <Epetra_LinearProblem.h>
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
 
 #include <iomanip>
+#include <new>
 #include <sstream>
 #include <vector>
 
@@ -90,12 +92,19 @@ namespace glide
     /// Amesos reports failures by status (a singular matrix: a non-zero
     /// status of the numeric factorization); KINSOL needs an exception.
     void
-    check_amesos(const int status, const char *phase)
+    check_amesos(const int status, const char *phase, Amesos_BaseSolver *solver)
     {
-      if (status != 0)
-        throw std::runtime_error(std::string("the direct solver's ") + phase +
-                                 " phase failed (status " +
-                                 std::to_string(status) + ")");
+      if (status == 0)
+        return;
+      // MUMPS could not allocate its workspace (INFOG(1) = -13, global, so
+      // every process sees it): out of memory, which no smaller load step
+      // mends (main() says so and exits).
+      if (auto *mumps = dynamic_cast<Amesos_Mumps *>(solver))
+        if (mumps->GetINFOG() && mumps->GetINFOG()[0] == -13)
+          throw std::bad_alloc();
+      throw std::runtime_error(std::string("the direct solver's ") + phase +
+                               " phase failed (status " +
+                               std::to_string(status) + ")");
     }
   } // namespace
 
@@ -119,11 +128,11 @@ namespace glide
         if (!direct)
           throw std::runtime_error("the direct solver " + name +
                                    " is not available in Trilinos");
-        check_amesos(direct->SymbolicFactorization(), "symbolic");
+        check_amesos(direct->SymbolicFactorization(), "symbolic", direct.get());
         factored         = &M;
         factored_entries = M.NumGlobalNonzeros64();
       }
-    check_amesos(direct->NumericFactorization(), "numeric");
+    check_amesos(direct->NumericFactorization(), "numeric", direct.get());
   }
 
   void
@@ -215,7 +224,7 @@ namespace glide
         direct_problem->SetLHS(&x.trilinos_vector());
         direct_problem->SetRHS(const_cast<Epetra_MultiVector *>(
           static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));
-        check_amesos(direct->Solve(), "solve");
+        check_amesos(direct->Solve(), "solve", direct.get());
         return 1;
       }
     StallingControl control(parameters.maximum_iterations,

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <new>
 #include <sstream>
 
 namespace glide
@@ -211,6 +212,12 @@ namespace glide
           fatal = std::current_exception();
           return -1;
         }
+      catch (const std::bad_alloc &)
+        {
+          // Out of memory: no smaller load step mends that.
+          fatal = std::current_exception();
+          return -1;
+        }
       catch (const std::exception &e)
         {
           failure = e.what();
@@ -232,7 +239,8 @@ namespace glide
           // deal.II 9.4.1 ignores this return value: remember the failure
           // so that the next linear solve refuses to run.
           if (dynamic_cast<const InputError *>(&e) ||
-              dynamic_cast<const Interrupted *>(&e))
+              dynamic_cast<const Interrupted *>(&e) ||
+              dynamic_cast<const std::bad_alloc *>(&e))
             fatal = std::current_exception();
           failure      = e.what();
           setup_failed = true;
@@ -256,6 +264,8 @@ namespace glide
         }
       catch (const std::exception &e)
         {
+          if (dynamic_cast<const std::bad_alloc *>(&e))
+            fatal = std::current_exception();
           failure = e.what();
           return -1;
         }

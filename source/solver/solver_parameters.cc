@@ -30,7 +30,9 @@ namespace glide
                       "deformable body's Young's modulus and A_ref the mean "
                       "boundary-face measure, is below this. Unit-free: the "
                       "same value works in SI and in mm-N-MPa. 1e-8 to 1e-12 "
-                      "are sensible.");
+                      "are sensible; at most 1e-6 (a load step's first "
+                      "iterate often has 1e-6 to 1e-3, so a looser one "
+                      "accepts unconverged states).");
     prm.declare_entry("Maximum iterations",
                       "25",
                       Patterns::Integer(1, 1000),
@@ -48,13 +50,18 @@ namespace glide
   NonlinearSolverParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Nonlinear solver");
-    strategy            = prm.get("Strategy");
-    tolerance           = prm.get_double("Tolerance");
-    maximum_iterations  = prm.get_integer("Maximum iterations");
-    maximum_setup_calls = prm.get_integer("Maximum setup calls");
+    strategy                         = prm.get("Strategy");
+    tolerance                        = prm.get_double("Tolerance");
+    maximum_iterations               = prm.get_integer("Maximum iterations");
+    maximum_setup_calls              = prm.get_integer("Maximum setup calls");
+    const std::string tolerance_text = prm.get("Tolerance");
     prm.leave_subsection();
-    require(tolerance > 0.,
-            "Parameter 'Nonlinear solver/Tolerance' must be > 0.");
+    require(tolerance > 0. && tolerance <= 1e-6,
+            "Parameter 'Nonlinear solver/Tolerance' = " + tolerance_text +
+              " is outside (0, 1e-6]: the scaled residual of a load "
+              "step's first iterate is often 1e-6 to 1e-3, so a looser "
+              "tolerance accepts a state that is not in equilibrium as "
+              "converged. Use 1e-8 to 1e-12.");
   }
 
   void

@@ -53,6 +53,7 @@ ap.add_argument("--copy-scene-as", help="run a copy of the scene file under this
 ap.add_argument("--fault", choices=["sigterm", "sigkill", "disk-full"])
 ap.add_argument("--after-rows", type=int, default=3, help="kill after this many statistics rows")
 ap.add_argument("--disk-size", default="160k", help="size of the tmpfs for --fault disk-full")
+ap.add_argument("--memory-limit", type=int, help="address-space limit of the run in MiB (out-of-memory tests)")
 ap.add_argument("args", nargs="*")
 a = ap.parse_args()
 # CMake splits arguments at ';', so tests write it as %3B (as in a URL).
@@ -171,8 +172,21 @@ def preexec():
 cmd = glide_command(out)
 print("$ " + " ".join(shlex.quote(c) for c in cmd))
 start = time.time()
+def limit_memory():
+    import resource
+    limit = a.memory_limit * 1024 * 1024
+    resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+
+
+def before_exec():
+    if a.stdout == "closed":
+        preexec()
+    if a.memory_limit:
+        limit_memory()
+
+
 p = subprocess.Popen(cmd, stdout=stdout_target(), stderr=subprocess.PIPE, text=True,
-                     preexec_fn=preexec if a.stdout == "closed" else None)
+                     preexec_fn=before_exec if (a.stdout == "closed" or a.memory_limit) else None)
 if a.fault in ("sigterm", "sigkill"):
     stats = os.path.join(out, name, "statistics.csv")
     deadline = time.time() + a.timeout
@@ -269,8 +283,9 @@ def check_consistent(directory, tolerate_stray):
         print("(python3-vtk9 missing: VTK read check left out)")
 
 
-if a.fault or (a.status == 2 and a.setup == "none"):
-    # A run that started (a fault, a failed load step): complete steps only.
+if a.fault or (a.status == 2 and a.setup == "none") or a.memory_limit:
+    # A run that started (a fault, a failed load step, memory that ran
+    # out): complete steps only.
     directory = os.path.join(out, name)
     check_consistent(directory, tolerate_stray=(a.fault == "sigkill"))
     if a.fault == "sigkill":

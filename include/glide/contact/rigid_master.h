@@ -64,5 +64,8 @@ namespace glide
     dealii::Tensor<1, dim> cylinder_axis; ///< 3D cylinder, current
     dealii::Tensor<1, dim> reference_normal, normal;
     std::unique_ptr<dealii::FunctionParser<1>> translation, rotation;
+    /// For messages: "Contact pair <name>/Rigid master", and the motion's
+    /// expressions.
+    std::string path, translation_text, rotation_text;
   };
 } // namespace glide
