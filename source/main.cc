@@ -72,7 +72,11 @@ main(int argc, char **argv)
   const MPI_Comm                           comm = MPI_COMM_WORLD;
   const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
 
-  glide::install_interrupt_handlers();
+  // The interrupt handlers (stop between load steps, keep the complete
+  // ones) are installed by Problem::run() when the load steps begin: until
+  // then SIGTERM and SIGINT end glide at once, also in the middle of
+  // reading a mesh (a FIFO, a slow file system) or building a large one,
+  // where a flag that nobody checks kept it running.
   try
     {
       std::vector<std::string> args(argv + 1, argv + argc), overrides;

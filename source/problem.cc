@@ -611,6 +611,9 @@ namespace glide
     for (const auto &m : contact.take_messages())
       pcout << "  " << m << std::endl;
     prepare_output();
+    // From here a signal stops the run between load steps (the steps
+    // written are complete); before, it ends the process at once.
+    install_interrupt_handlers();
 
     LoadStepper stepper(scene.load_stepping);
     while (stepper.running())

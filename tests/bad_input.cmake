@@ -129,6 +129,12 @@ glide_bad_input(output.unwritable --setup unwritable --status 4 --expect "Cannot
 glide_bad_input(output.rerun_keeps_user_files --setup rerun-with-user-file --status 0 -- ${BLOCK})
 glide_bad_input(output.mpi_directory_under_a_file --setup under-file --status 4 --mpirun "${GLIDE_MPIRUN} -np 2 --oversubscribe"
   --expect "Cannot create the output directory" -- ${BLOCK})
+# Open MPI's parallel file writing aborted (a buffer overflow, after the
+# solve) on result file names of about 256 characters or more.
+string(REPEAT "a" 220 LONG_NAME)
+glide_bad_input(output.mpi_file_names_too_long --status 4 --mpirun "${GLIDE_MPIRUN} -np 2 --oversubscribe"
+  --expect "Under MPI the results' file names may be at most 240 characters.*Choose a shorter 'Output/Directory' or 'Scene name'"
+  -- ${BLOCK} --set "Scene name=${LONG_NAME}")
 
 # Faults during a run: killed, or the disk full.
 set(LONG_BLOCK ${BLOCK} --set "Load stepping/Number of steps=400" --set "Body block/Block/Subdivisions=40, 20"

@@ -3,6 +3,8 @@
 
 #include <deal.II/base/utilities.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -217,6 +219,10 @@ namespace glide
                   "of a .msh or .inp file.");
         if (file[0] != '/')
           file = scene_directory + "/" + file;
+        std::error_code ec;
+        require(!std::filesystem::is_directory(file, ec),
+                "Parameter '" + path + "/Mesh file': '" + file +
+                  "' is a directory; give the path of a .msh or .inp file.");
         std::ifstream in(file);
         require(static_cast<bool>(in),
                 "Parameter '" + path + "/Mesh file': cannot open '" + file +
@@ -261,11 +267,31 @@ namespace glide
 
     require(radius > 0.,
             "Parameter '" + path + "/Round shapes/Radius' must be > 0.");
-    if (type == "ring" || type == "half ring" || type == "quarter ring")
+    const bool ring =
+      type == "ring" || type == "half ring" || type == "quarter ring";
+    if (ring)
       require(inner_radius > 0. && inner_radius < radius,
               "Parameter '" + path +
                 "/Round shapes/Inner radius' must satisfy 0 < Inner radius "
                 "< Radius.");
+    // A round shape's faces are told apart by their distance from the
+    // centre, to 1e-6 of the radius: coordinates whose round-off exceeds
+    // that (a centre 1e10 radii away), or a radius whose square
+    // overflows, left a face on no surface (an internal error).
+    if (type != "block" && type != "file")
+      {
+        double far = 0.;
+        for (const double c : center)
+          far = std::max(far, std::abs(c));
+        const double smallest = ring ? inner_radius : radius;
+        require(radius <= 1e100 && far <= 1e8 * smallest,
+                "Parameters '" + path + "/Round shapes/Center' and 'Radius'" +
+                  (ring ? std::string(" and 'Inner radius'") : "") +
+                  ": a round shape needs a radius of at most 1e100 and "
+                  "its centre within 1e8 radii of the origin (double "
+                  "precision cannot tell its surfaces apart otherwise); "
+                  "move the origin near the body or change the units.");
+      }
   }
 
   void

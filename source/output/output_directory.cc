@@ -113,6 +113,27 @@ namespace glide
         {
           const fs::path  dir(directory);
           std::error_code ec;
+          // Open MPI's parallel file writing (MPI-IO with shared file
+          // locks) aborts with a buffer overflow on file names of about
+          // 256 characters or more; its processes then die after the solve.
+          // The longest name written in parallel: <staging>/<scene
+          // name>-NNNN.vtu.
+          if (dealii::Utilities::MPI::n_mpi_processes(comm) > 1)
+            {
+              const std::string longest =
+                (fs::absolute(fs::path(staging_directory), ec) /
+                 (dir.filename().string() + "-0000.vtu"))
+                  .string();
+              if (longest.size() > 240)
+                throw OutputError(
+                  "Under MPI the results' file names may be at most 240 "
+                  "characters long with their directory; " +
+                  in_quotes(fs::path(longest)) + " has " +
+                  std::to_string(longest.size()) +
+                  ", and Open MPI's parallel file writing aborts on longer "
+                  "ones. Choose a shorter 'Output/Directory' or 'Scene "
+                  "name'.");
+            }
           if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
             throw OutputError("The output directory " + in_quotes(dir) +
                               " exists and is not a directory; choose another "

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <set>
@@ -569,6 +570,10 @@ namespace glide
     Scene scene;
     scene.file = filename;
     {
+      std::error_code ec;
+      require(!std::filesystem::is_directory(filename, ec),
+              "The scene file '" + filename +
+                "' is a directory; give the path of a .prm file in it.");
       std::ifstream in(filename);
       require(static_cast<bool>(in),
               "Cannot open the scene file '" + filename +
