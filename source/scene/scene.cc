@@ -6,6 +6,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -502,22 +503,92 @@ namespace glide
 
 
 
+  namespace
+  {
+    /// The memory a process may use: the machine's physical memory, or
+    /// less where the address space is limited (`ulimit -v`), times the
+    /// number of processes (as if each had a machine of its own); and the
+    /// end of a sentence that says which.
+    std::pair<double, std::string>
+    machine_memory()
+    {
+      const double page  = static_cast<double>(sysconf(_SC_PAGESIZE));
+      double       bytes = page * static_cast<double>(sysconf(_SC_PHYS_PAGES));
+      std::string  what  = "the machine has ";
+      rlimit       limit;
+      if (getrlimit(RLIMIT_AS, &limit) == 0 &&
+          limit.rlim_cur != RLIM_INFINITY &&
+          static_cast<double>(limit.rlim_cur) < bytes)
+        {
+          bytes = static_cast<double>(limit.rlim_cur);
+          what  = "the process's address space is limited (ulimit -v) to ";
+        }
+      bytes *= dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+      std::ostringstream text;
+      text << std::setprecision(3) << what << bytes / (1 << 30) << " GiB";
+      return {bytes, text.str()};
+    }
+  } // namespace
+
+
+
+  double
+  Scene::memory_lower_bound(const double cells,
+                            const double bytes_per_cell) const
+  {
+    // DoFs of the Lagrange elements and the Jacobian's entries (12 bytes
+    // each: value and column index; (2p+1)^dim vertex neighbours per row
+    // and component) plus the cell data of deal.II and p4est (at least
+    // 200 bytes per cell). The direct solver's factors, the VTU output and
+    // the contact data come on top.
+    const double dofs = cells * std::pow(degree, dimension) * dimension;
+    const double entries_per_row =
+      dimension * std::pow(2. * degree + 1., dimension);
+    return std::max(200., bytes_per_cell) * cells +
+           12. * entries_per_row * dofs;
+  }
+
+
+
+  void
+  Scene::check_refinement_fits(const double       cells,
+                               const double       bytes_per_cell,
+                               const std::string &body,
+                               const std::string &parameter) const
+  {
+    const double bytes             = memory_lower_bound(cells, bytes_per_cell);
+    const auto [physical, machine] = machine_memory();
+    std::ostringstream text;
+    text << std::setprecision(3) << "refining the mesh by 'Body " << body
+         << "/Refinement/" << parameter << "' would make about " << cells
+         << " cells, at least " << bytes / (1 << 30) << " GiB of memory";
+    require(bytes <= physical && cells < 4.e9,
+            "The mesh is too large for this machine: " + text.str() + ", but " +
+              machine +
+              (cells < 4.e9 ? std::string() :
+                              " (and deal.II numbers cells with 32-bit "
+                              "integers here, at most about 4e9)") +
+              ". Lower 'Body " + body + "/Refinement/" + parameter + "'" +
+              (parameter == "Local refinements" ?
+                 " or 'Body " + body +
+                   "/Refinement/Refinement radius' (each local refinement "
+                   "multiplies the cells inside the radius by " +
+                   std::to_string(1 << dimension) + ")" :
+                 std::string()) +
+              ", or run on more machines with MPI.");
+  }
+
+
+
   void
   Scene::check_size() const
   {
     // A lower bound of the memory the run needs, before the mesh is
-    // built: cells after global refinement (local refinement only adds),
-    // DoFs of the Lagrange elements, and the Jacobian's entries (12 bytes
-    // each: value and column index; (2p+1)^dim vertex neighbours per
-    // row and component) plus 200 bytes per cell (deal.II's and p4est's
-    // cell data). The direct solver's factors, the VTU output and the
-    // contact data come on top, so refusing when this bound exceeds the
-    // memory of the machine (times the number of processes, as if each
-    // had a machine of its own) never refuses a scene that would fit.
-    const double page = static_cast<double>(sysconf(_SC_PAGESIZE));
-    const double physical =
-      page * static_cast<double>(sysconf(_SC_PHYS_PAGES)) *
-      dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+    // built: cells after global refinement (local refinement only adds;
+    // Mesh checks each refinement cycle with check_refinement_fits before
+    // it runs). Refusing when this bound exceeds the memory of the
+    // machine never refuses a scene that would fit.
+    const auto [physical, machine] = machine_memory();
     double      cells = 0, dofs = 0;
     std::string largest;
     double      largest_cells = 0;
@@ -537,22 +608,25 @@ namespace glide
             largest       = b.name;
           }
       }
-    const double entries_per_row =
-      dimension * std::pow(2. * degree + 1., dimension);
-    const double       bytes = 200. * cells + 12. * entries_per_row * dofs;
+    const double       bytes = memory_lower_bound(cells);
     std::ostringstream text;
     text << std::setprecision(3) << "about " << cells << " cells and " << dofs
          << " unknowns, at least " << bytes / (1 << 30) << " GiB of memory";
+    const bool block =
+      std::any_of(bodies.begin(), bodies.end(), [&](const BodyParameters &b) {
+        return b.name == largest && b.mesh.type == "block";
+      });
     const std::string advice =
-      " Lower 'Body " + largest + "/Block/Subdivisions' or 'Body " + largest +
+      " Lower " +
+      (block ? "'Body " + largest + "/Block/Subdivisions' or " :
+               std::string()) +
+      "'Body " + largest +
       "/Refinement/Global refinements' (each global refinement multiplies "
       "the cells by " +
       std::to_string(1 << dimension) + "), or run on more machines with MPI.";
     require(bytes <= physical,
-            "The mesh is too large for this machine: " + text.str() +
-              ", but the machine has " +
-              std::to_string(static_cast<long long>(physical / (1 << 30))) +
-              " GiB." + advice);
+            "The mesh is too large for this machine: " + text.str() + ", but " +
+              machine + "." + advice);
     // deal.II's DoF and cell indices here are 32-bit.
     require(dofs < 4.e9 && cells < 4.e9,
             "The mesh is too large: " + text.str() +

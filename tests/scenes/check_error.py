@@ -54,6 +54,8 @@ ap.add_argument("--fault", choices=["sigterm", "sigkill", "disk-full"])
 ap.add_argument("--after-rows", type=int, default=3, help="kill after this many statistics rows")
 ap.add_argument("--disk-size", default="160k", help="size of the tmpfs for --fault disk-full")
 ap.add_argument("--memory-limit", type=int, help="address-space limit of the run in MiB (out-of-memory tests)")
+ap.add_argument("--refused-at-setup", action="store_true",
+                help="with --memory-limit: the scene is refused before anything is written")
 ap.add_argument("args", nargs="*")
 a = ap.parse_args()
 # CMake splits arguments at ';', so tests write it as %3B (as in a URL).
@@ -283,7 +285,7 @@ def check_consistent(directory, tolerate_stray):
         print("(python3-vtk9 missing: VTK read check left out)")
 
 
-if a.fault or (a.status == 2 and a.setup == "none") or a.memory_limit:
+if a.fault or (a.status == 2 and a.setup == "none") or (a.memory_limit and not a.refused_at_setup):
     # A run that started (a fault, a failed load step, memory that ran
     # out): complete steps only.
     directory = os.path.join(out, name)

@@ -92,6 +92,22 @@ namespace glide
     std::string
     analysis_name() const;
 
+    /// A lower bound of the bytes a mesh of @p cells cells needs: its cell
+    /// data (@p bytes_per_cell, at least 200), the unknowns and the
+    /// Jacobian's entries.
+    double
+    memory_lower_bound(double cells, double bytes_per_cell = 200.) const;
+
+    /// Refuse (InputError) a refinement cycle of the mesh that would make
+    /// @p cells cells of @p bytes_per_cell bytes (as measured on the mesh
+    /// so far), more than this machine can hold; @p body and @p parameter
+    /// ("Global refinements", "Local refinements") are named.
+    void
+    check_refinement_fits(double             cells,
+                          double             bytes_per_cell,
+                          const std::string &body,
+                          const std::string &parameter) const;
+
   private:
     static void
     declare_parameters(dealii::ParameterHandler       &prm,
