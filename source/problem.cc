@@ -608,6 +608,11 @@ namespace glide
     Timer wall(comm);
     setup();
     print_summary();
+    if (contact.active())
+      {
+        contact.set_time(0.);
+        contact.check_initial_overclosure(U);
+      }
     for (const auto &m : contact.take_messages())
       pcout << "  " << m << std::endl;
     prepare_output();

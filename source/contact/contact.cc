@@ -1213,6 +1213,69 @@ namespace glide
   }
 
   template <int dim>
+  unsigned int
+  Contact<dim>::check_initial_overclosure(const VectorType &U_in)
+  {
+    const VectorType &U     = view(U_in);
+    unsigned int      total = 0;
+    for (const auto &pair : pairs)
+      {
+        const auto s = constraints(pair, U);
+        // The deepest node beyond its facet size, as (depth / size, depth,
+        // position) on every process.
+        unsigned int                           n = 0;
+        std::tuple<double, double, Point<dim>> deepest{0., 0., Point<dim>()};
+        for (unsigned int i = 0; i < s.size(); ++i)
+          {
+            const auto  &node  = pair.nodes[i];
+            const double depth = clearance - s[i].gap;
+            if (!s[i].found() || node.size <= 0. || !(depth > node.size))
+              continue;
+            ++n;
+            if (depth / node.size > std::get<0>(deepest))
+              deepest = {depth / node.size, depth, node.X};
+          }
+        n = Utilities::MPI::sum(n, comm);
+        total += n;
+        const auto all = Utilities::MPI::gather(comm, deepest, 0);
+        if (n == 0 || Utilities::MPI::this_mpi_process(comm) != 0)
+          continue;
+        for (const auto &d : all)
+          if (std::get<0>(d) > std::get<0>(deepest))
+            deepest = d;
+        const auto        &p = *pair.parameters;
+        std::ostringstream text;
+        text << std::setprecision(3) << "warning: contact pair '" << p.name
+             << "': " << n << " slave node(s) of '" << p.slave
+             << "' start inside the master by more than their facet size "
+                "(the deepest by "
+             << std::get<1>(deepest) << ", " << std::get<0>(deepest)
+             << " times its facet size, at (";
+        for (unsigned int d = 0; d < dim; ++d)
+          text << (d ? ", " : "") << std::get<2>(deepest)[d];
+        text << ")). The first load step pushes them out at once, with a "
+                "large force. If the bodies should start apart or just "
+                "touching, check the positions of the meshes";
+        if (p.master_type == MasterType::rigid_circle ||
+            p.master_type == MasterType::rigid_sphere)
+          text << " and 'Contact pair " << p.name
+               << "/Rigid master/Slave inside' (" << std::boolalpha
+               << p.slave_inside << ": the slave is "
+               << (p.slave_inside ? "inside" : "outside") << " the "
+               << (p.master_type == MasterType::rigid_circle ? "circle" :
+                                                               "sphere")
+               << ")";
+        else if (p.master_type == MasterType::rigid_plane)
+          text << " and the direction of 'Contact pair " << p.name
+               << "/Rigid master/Normal' (it points from the plane towards "
+                  "the slave)";
+        text << ".";
+        messages.push_back(text.str());
+      }
+    return total;
+  }
+
+  template <int dim>
   std::vector<ContactPairFields<dim>>
   Contact<dim>::nodal_fields(const VectorType &U_in, const double t)
   {

@@ -1879,6 +1879,42 @@ def case_robustness_faceted():
                  else "did not converge"))
 
 
+def case_initial_overclosure():
+    """Gross initial overclosure is reported, an interference fit is not
+    (Contact::check_initial_overclosure). Before, a misplaced mesh or a
+    wrong 'Slave inside' ran without a word: the first load step pushed the
+    nodes out with a large force and the answer was that of another scene.
+    (1) The rigid punch with 'Slave inside = true' (the block's top is
+    outside the circle): the warning names the pair, the parameter and its
+    value; the run still ends (exit 0), as the scene is valid input.
+    (2) The quickstart cylinder sunk 0.3 into the block: the warning names
+    the depth and the meshes' positions.
+    (3) The concentric cylinders with an interference of 0.001 (a fifth of
+    the shipped gap, far below the facet size) and the shipped quickstart:
+    no warning."""
+    punch = scene_file("rigid-punch.prm")
+    _, log, _ = run(punch, "Contact pair punch/Rigid master/Slave inside=true", "Output/Write VTU=false",
+                    name="inside")
+    check("warning: contact pair 'punch':" in log and "start inside the master by more than their facet size" in log,
+          "wrong 'Slave inside': the overclosure is reported")
+    check("'Contact pair punch/Rigid master/Slave inside' (true: the slave is inside the circle)" in log,
+          "the warning names 'Slave inside' and its value")
+    quick = scene_file("quickstart.prm")
+    _, log, _ = run(quick, "Body block/Block/Upper corner=2, 0.3", "Output/Write VTU=false", name="sunk")
+    m = re.search(r"contact pair 'hertz': (\d+) slave node\(s\) of 'cylinder.curved' start inside the master "
+                  r"by more than their facet size \(the deepest by ([0-9.e+-]+),", log)
+    check(m is not None and int(m.group(1)) > 0, "the sunk cylinder: the overclosure is reported")
+    if m:
+        close(float(m.group(2)), 0.3, 1e-6, "the deepest node's depth (the cylinder's lowest point, 0.3 deep)")
+    check("check the positions of the meshes." in log and "Slave inside" not in log,
+          "a deformable master: the meshes' positions named, no rigid-master parameter")
+    for scene_path, sets in ((scene_file("concentric-cylinders.prm"), ("Body outer/Round shapes/Inner radius=0.999",)),
+                             (quick, ())):
+        _, log, _ = run(scene_path, *sets, "Output/Write VTU=false", name="fit")
+        check("start inside the master" not in log,
+              f"{os.path.basename(scene_path)} {' '.join(sets)}: no overclosure warning")
+
+
 def case_round_body_turn():
     """Issue 12 / R16.2, R16.3: a round body held at its centre turns
     freely under frictionless contact. The robustness matrix's cylinder is

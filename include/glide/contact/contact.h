@@ -214,6 +214,17 @@ namespace glide
     unsigned int
     close_touching_nodes(VectorType &U) const;
 
+    /**
+     * Warn (take_messages()) about every pair whose slave nodes start, at
+     * iterate @p U (the initial state), inside the master by more than their
+     * facet size: a misplaced mesh or a wrong 'Slave inside' gives no other
+     * sign, and the first load step pushes such nodes out at once with a
+     * large force. An interference fit (a fraction of the facet size) is
+     * not reported. Returns the number of such nodes (all processes).
+     */
+    unsigned int
+    check_initial_overclosure(const VectorType &U);
+
     /// The contact fields of every pair's slave nodes at iterate @p U and
     /// load factor @p t (COPEN, force, CPRESS, CSTATUS, CSLIP, normal,
     /// tangents), gathered on the first process, for the ContactWriter.
