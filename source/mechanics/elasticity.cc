@@ -1510,12 +1510,21 @@ namespace glide
     // load factor (CheckedFunction throws otherwise), before anything is
     // written; the values in between are checked as they are used.
     const double first = 1. / scene.load_stepping.number_of_steps;
+    // Their sizes too: the largest nodal load (the residual at U = 0) and
+    // the largest prescribed displacement, at the last load factor.
+    double largest_load = 0., largest_displacement = 0.;
     for (const double t : {first, 1.})
       {
-        constraints_at(t);
+        const auto c = constraints_at(t);
         VectorType U(owned_total, comm), F(owned_total, comm);
         residual(U, t, F);
+        largest_load = std::max(largest_load, F.linfty_norm());
+        for (const auto &line : c.get_lines())
+          if (owned.is_element(line.index))
+            largest_displacement =
+              std::max(largest_displacement, std::abs(line.inhomogeneity));
       }
+    largest_displacement = Utilities::MPI::max(largest_displacement, comm);
 
     // Stiffnesses that double precision cannot resolve together.
     double      E_min = std::numeric_limits<double>::infinity(), E_max = 0;
@@ -1547,6 +1556,61 @@ namespace glide
               ": double precision cannot resolve both bodies' forces. Make "
               "the stiff body rigid ('Rigid body/Rigid = true') instead.");
     const double L = mesh.scene_size();
+    // Loads and prescribed displacements that would move the bodies by
+    // more than 1e8 times the scene's size: positions X + u then keep no
+    // digit of the mesh's geometry (u carries 16 digits, X is 1e-8 of it),
+    // and beyond about 1e150 the residual's norm overflows. Almost always
+    // units that do not match (a load in N against moduli in GPa, or a
+    // displacement in mm in a scene in m), or an expression gone wrong.
+    // The load's measure: a nodal force over the stiffest body's modulus
+    // and the mean boundary face area, the strain it would cause there.
+    constexpr double maximum_motion = 1e8;
+    if (E_max > 0.)
+      {
+        const double strain = largest_load / (E_max * reference_area);
+        require(std::isfinite(strain) && !(strain > maximum_motion),
+                file +
+                  "The loads ('Function' of the traction, pressure and "
+                  "force conditions, 'Body force') reach a nodal force "
+                  "of " +
+                  short_number(largest_load) + ", " + short_number(strain) +
+                  " times the stiffest body's Young's modulus (" +
+                  short_number(E_max) + ") on a face of mean area " +
+                  short_number(reference_area) +
+                  ": they would deform the bodies by more than " +
+                  short_number(maximum_motion) +
+                  " times their size, which double precision cannot "
+                  "represent against the meshes' coordinates. Check that "
+                  "the loads, the moduli and the lengths are in one system "
+                  "of units (N, MPa, mm or N, Pa, m).");
+        // Below that limit a step may still fail where the loads strain the
+        // bodies by hundreds: round-off in a residual of that size exceeds
+        // the tolerance (a linear block loaded to a strain of 5e5 stopped
+        // at a scaled residual of 1.8e-10). A failed step's note says so.
+        if (strain > 100.)
+          holding_hints.push_back(
+            "the loads reach a nodal force of " + short_number(largest_load) +
+            ", " + short_number(strain) +
+            " times the stiffest body's Young's modulus (" +
+            short_number(E_max) + ") on a face of mean area " +
+            short_number(reference_area) +
+            ": strains of that size leave round-off above the solver's "
+            "tolerance and are beyond any material. Check that the loads, "
+            "the moduli and the lengths are in one system of units (N, MPa, "
+            "mm or N, Pa, m).");
+      }
+    require(std::isfinite(largest_displacement) &&
+              !(largest_displacement > maximum_motion * L),
+            file +
+              "The prescribed displacements ('Function' of the "
+              "displacement conditions, a rigid body's 'Translation' "
+              "and 'Rotation' about its 'Rotation center') reach " +
+              short_number(largest_displacement) + ", more than " +
+              short_number(maximum_motion) + " times the scene's size (" +
+              short_number(L) +
+              "): positions then keep no digit of the meshes' geometry. "
+              "Check the displacements' units and the rigid bodies' "
+              "'Rotation center'.");
     for (const auto &cp : scene.contact_pairs)
       if (cp.enforcement == Enforcement::penalty && cp.penalty_stiffness > 0)
         require(!(cp.penalty_stiffness * L >

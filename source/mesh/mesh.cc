@@ -10,7 +10,9 @@
 #include <deal.II/grid/manifold_lib.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <numeric>
 #include <sstream>
 
@@ -526,6 +528,23 @@ namespace glide
           hi[d] = std::max(hi[d], v[d]);
         }
     size = lo.distance(hi);
+    // Lengths whose squares and cubes (cell areas, volumes, Jacobian
+    // determinants) double precision holds: 1e-80 to 1e80. Beyond, a cell's
+    // measure underflows to 0 or overflows to infinity and the first
+    // residual is not a number (a block 2e-300 or 2e300 long ended in
+    // "KINSOL stopped ... uscale has nonpositive elements").
+    {
+      std::ostringstream text;
+      text << std::setprecision(3) << size;
+      require(std::isfinite(size) && size >= 1e-80 && size <= 1e80,
+              "The scene's meshes span " + text.str() +
+                " (the diagonal of their bounding box), beyond the lengths "
+                "of 1e-80 to 1e80 whose areas and volumes double precision "
+                "holds. Write the scene in another unit of length (e.g. mm "
+                "or m), with every parameter that carries it: the meshes' "
+                "corners, centres and radii ('Block', 'Round shapes'), the "
+                "coordinates of the mesh files, the moduli and the loads.");
+    }
 
     // Each refinement cycle is checked before it runs: the cells it would
     // make must fit in the machine's memory (Scene::check_size bounds only

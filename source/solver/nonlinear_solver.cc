@@ -160,6 +160,16 @@ namespace glide
                          const VectorType &solution_scale)
   {
     using KINSOL = SUNDIALS::KINSOL<VectorType>;
+    // The longest Newton step KINSOL takes, in the scaled 2-norm
+    // ||D_u du||_2 (D_u = 1 / scene size): a root-mean-square motion of
+    // 1e8 scene sizes, the limit of the input checks
+    // (Elasticity::check_inputs). KINSOL's default, 1000 ||D_u u_0||_2 (or
+    // 1000 from u_0 = 0), cut every step of a geometrically linear block
+    // loaded to a strain of a few hundred short: its residual fell by a
+    // fraction of a per cent per iteration until KINSOL stopped on its
+    // step length test, where one full step solves the problem. Steps that
+    // diverge are stopped by the driver's monitor instead.
+    const double maximum_step = 1e8 * std::sqrt(std::max<double>(1., U.size()));
     typename KINSOL::AdditionalData data(parameters.strategy == "newton" ?
                                            KINSOL::AdditionalData::newton :
                                            KINSOL::AdditionalData::linesearch,
@@ -167,7 +177,8 @@ namespace glide
                                          parameters.tolerance,
                                          /*step_tolerance=*/1e-14,
                                          /*no_init_setup=*/false,
-                                         parameters.maximum_setup_calls);
+                                         parameters.maximum_setup_calls,
+                                         maximum_step);
     KINSOL kinsol(data, comm);
 
     Result      result;

@@ -1879,6 +1879,26 @@ def case_robustness_faceted():
                  else "did not converge"))
 
 
+def case_large_strain_linear_step():
+    """A geometrically linear block loaded to strains of hundreds (E = 1000,
+    traction (1e5, -5e5)) is one linear solve. KINSOL's default longest
+    Newton step (1000 in the scaled 2-norm from u = 0) cut each step short,
+    the residual fell by 0.15 % per iteration and the step failed after 6
+    cut-backs ("scaled step length test"); NonlinearSolver now allows steps
+    up to the input checks' limit. Loaded to a strain of 5e5, where
+    round-off exceeds the tolerance, a failed step's note names the loads'
+    size and the units."""
+    block = scene("block.prm")
+    rows, log, _ = run(block, "Boundary condition load/Function=1e5*t; -5e5*t", "Output/Write VTU=false",
+                       name="strain")
+    check(re.search(r"converged in 1 iteration\(s\)", log) is not None and "cutting back" not in log,
+          "the linear step converges in one Newton iteration, without cut-back")
+    _, log, _ = run(block, "Boundary condition load/Function=1e8*t; -5e8*t", "Output/Write VTU=false",
+                    "Load stepping/Maximum cut-backs=1", name="strain-far", expect_status=2)
+    check("Note: the loads reach a nodal force of 2.5e+08, 5e+05 times the stiffest body's Young's modulus" in log,
+          "a failed step at a strain of 5e5 names the loads' size")
+
+
 def case_initial_overclosure():
     """Gross initial overclosure is reported, an interference fit is not
     (Contact::check_initial_overclosure). Before, a misplaced mesh or a
