@@ -137,6 +137,8 @@ namespace glide
 
     NonlinearSolverParameters newton_parameters = scene.nonlinear_solver;
     newton_parameters.round_off_floor           = elasticity.round_off_floor();
+    newton_parameters.linear_problem =
+      !contact.active() && !scene.geometric_nonlinearity;
     newton = std::make_unique<NonlinearSolver>(newton_parameters, comm);
     NonlinearSolverParameters damped_parameters = newton_parameters;
     damped_parameters.strategy                  = "line search";
@@ -666,9 +668,13 @@ namespace glide
                 << ": KINSOL could not reduce the residual further, and "
                 << scientific(result.residual_norm)
                 << " is within the round-off floor "
-                << scientific(elasticity.round_off_floor())
-                << " that the stiffest body sets (10 x machine epsilon x "
-                   "its lambda + 2 mu / the softest Young's modulus)"
+                << scientific(elasticity.round_off_floor()) << " that "
+                << (elasticity.round_off_floor_from_loads() ?
+                      "the loads set (10 x machine epsilon x the largest "
+                      "nodal load over the softest Young's modulus and the "
+                      "mean face area)" :
+                      "the stiffest body sets (10 x machine epsilon x its "
+                      "lambda + 2 mu / the softest Young's modulus)")
                 << std::endl;
         postprocess(stepper.steps(),
                     t_old,

@@ -1,3 +1,4 @@
+#include <glide/base/quiet_parse.h>
 #include <glide/contact/rigid_master.h>
 #include <glide/mechanics/rotation.h>
 #include <glide/scene/input_error.h>
@@ -19,24 +20,19 @@ namespace glide
           const unsigned int n,
           const std::string &parameter)
     {
-      auto f = std::make_unique<FunctionParser<1>>(n);
-      try
-        {
-          // Functions of the load factor only: the variable is 't'.
-          f->initialize("t",
-                        Utilities::split_string_list(expression, ';'),
-                        {{"pi", numbers::PI}},
-                        false);
-          Vector<double> v(n);
-          f->vector_value(Point<1>(0.), v);
-        }
-      catch (const ExceptionBase &e)
-        {
-          std::ostringstream s;
-          e.print_info(s);
-          throw InputError("Parameter '" + parameter + "' = '" + expression +
-                           "' is not a valid function of t: " + s.str());
-        }
+      auto              f     = std::make_unique<FunctionParser<1>>(n);
+      const std::string error = parse_quietly([&]() {
+        // Functions of the load factor only: the variable is 't'.
+        f->initialize("t",
+                      Utilities::split_string_list(expression, ';'),
+                      {{"pi", numbers::PI}},
+                      false);
+        Vector<double> v(n);
+        f->vector_value(Point<1>(0.), v);
+      });
+      if (!error.empty())
+        throw InputError("Parameter '" + parameter + "' = '" + expression +
+                         "' is not a valid function of t: " + error + ".");
       return f;
     }
   } // namespace

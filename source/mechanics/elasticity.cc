@@ -1,4 +1,5 @@
 #include <glide/base/collective_failure.h>
+#include <glide/base/quiet_parse.h>
 #include <glide/mechanics/checked_function.h>
 #include <glide/mechanics/elasticity.h>
 #include <glide/mechanics/rotation.h>
@@ -78,33 +79,22 @@ namespace glide
     auto              f = std::make_unique<CheckedFunction<dim>>(n_components,
                                                     parameter,
                                                     expression);
-    const std::string vars = (dim == 2 ? "x,y,t" : "x,y,z,t");
-    try
-      {
-        f->initialize(vars,
-                      Utilities::split_string_list(expression, ';'),
-                      {{"pi", numbers::PI}},
-                      true);
-        // muparser compiles lazily. The unchecked value: the origin need
-        // not be a point of the body (the values are checked where they
-        // are used).
-        for (unsigned int c = 0; c < n_components; ++c)
-          f->FunctionParser<dim>::value(Point<dim>(), c);
-      }
-    catch (const ExceptionBase &e)
-      {
-        std::ostringstream s;
-        e.print_info(s);
-        throw InputError("Parameter '" + parameter + "' = '" + expression +
-                         "' is not a valid expression in " + vars + ": " +
-                         s.str());
-      }
-    catch (const std::exception &e)
-      {
-        throw InputError("Parameter '" + parameter + "' = '" + expression +
-                         "' is not a valid expression in " + vars + ": " +
-                         e.what());
-      }
+    const std::string vars  = (dim == 2 ? "x,y,t" : "x,y,z,t");
+    const std::string error = parse_quietly([&]() {
+      f->initialize(vars,
+                    Utilities::split_string_list(expression, ';'),
+                    {{"pi", numbers::PI}},
+                    true);
+      // muparser compiles lazily. The unchecked value: the origin need
+      // not be a point of the body (the values are checked where they
+      // are used).
+      for (unsigned int c = 0; c < n_components; ++c)
+        f->FunctionParser<dim>::value(Point<dim>(), c);
+    });
+    if (!error.empty())
+      throw InputError("Parameter '" + parameter + "' = '" + expression +
+                       "' is not a valid expression in " + vars + ": " + error +
+                       ".");
     return f;
   }
 
@@ -656,6 +646,14 @@ namespace glide
   }
 
   template <int dim>
+  bool
+  Elasticity<dim>::round_off_floor_from_loads() const
+  {
+    return 10. * std::numeric_limits<double>::epsilon() * largest_scaled_load >=
+           round_off_floor();
+  }
+
+  template <int dim>
   double
   Elasticity<dim>::round_off_floor() const
   {
@@ -668,8 +666,11 @@ namespace glide
           p_wave =
             std::max(p_wave, E * (1. - nu) / ((1. + nu) * (1. - 2. * nu)));
         }
-    return 10. * std::numeric_limits<double>::epsilon() * p_wave /
-           min_youngs_modulus;
+    // Round-off is relative to the largest terms of the residual: the
+    // stresses of the stiffest body, or the loads where they are larger
+    // (a linear block loaded to a strain of 5e5 stalled at 1.8e-10).
+    return 10. * std::numeric_limits<double>::epsilon() *
+           std::max(p_wave / min_youngs_modulus, largest_scaled_load);
   }
 
   template <int dim>
@@ -1525,6 +1526,7 @@ namespace glide
               std::max(largest_displacement, std::abs(line.inhomogeneity));
       }
     largest_displacement = Utilities::MPI::max(largest_displacement, comm);
+    largest_scaled_load  = largest_load * residual_scale();
 
     // Stiffnesses that double precision cannot resolve together.
     double      E_min = std::numeric_limits<double>::infinity(), E_max = 0;
@@ -1583,10 +1585,9 @@ namespace glide
                   "represent against the meshes' coordinates. Check that "
                   "the loads, the moduli and the lengths are in one system "
                   "of units (N, MPa, mm or N, Pa, m).");
-        // Below that limit a step may still fail where the loads strain the
-        // bodies by hundreds: round-off in a residual of that size exceeds
-        // the tolerance (a linear block loaded to a strain of 5e5 stopped
-        // at a scaled residual of 1.8e-10). A failed step's note says so.
+        // Below that limit a step that fails where the loads strain the
+        // bodies by hundreds is most likely a mistake of units, and no
+        // material takes such strains: a failed step's note says so.
         if (strain > 100.)
           holding_hints.push_back(
             "the loads reach a nodal force of " + short_number(largest_load) +
@@ -1594,8 +1595,9 @@ namespace glide
             " times the stiffest body's Young's modulus (" +
             short_number(E_max) + ") on a face of mean area " +
             short_number(reference_area) +
-            ": strains of that size leave round-off above the solver's "
-            "tolerance and are beyond any material. Check that the loads, "
+            ": strains of that size are beyond any material, and a "
+            "geometrically nonlinear body folds under them. Check that the "
+            "loads, "
             "the moduli and the lengths are in one system of units (N, MPa, "
             "mm or N, Pa, m).");
       }

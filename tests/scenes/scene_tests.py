@@ -1884,19 +1884,29 @@ def case_large_strain_linear_step():
     traction (1e5, -5e5)) is one linear solve. KINSOL's default longest
     Newton step (1000 in the scaled 2-norm from u = 0) cut each step short,
     the residual fell by 0.15 % per iteration and the step failed after 6
-    cut-backs ("scaled step length test"); NonlinearSolver now allows steps
-    up to the input checks' limit. Loaded to a strain of 5e5, where
-    round-off exceeds the tolerance, a failed step's note names the loads'
-    size and the units."""
+    cut-backs ("scaled step length test"); for a linear problem (no
+    contact, geometrically linear) NonlinearSolver now allows steps up to
+    the input checks' limit. Loaded to a strain of 5e5 the solve
+    stalled at a scaled residual of 1.8e-10 against the tolerance 1e-10: the
+    round-off floor now grows with the loads where they exceed the bodies'
+    stresses, and the step is accepted at it. A geometrically nonlinear
+    block pulled to a strain of 500 fails: the failed step's note names the
+    loads' size and the units."""
     block = scene("block.prm")
     rows, log, _ = run(block, "Boundary condition load/Function=1e5*t; -5e5*t", "Output/Write VTU=false",
                        name="strain")
     check(re.search(r"converged in 1 iteration\(s\)", log) is not None and "cutting back" not in log,
           "the linear step converges in one Newton iteration, without cut-back")
-    _, log, _ = run(block, "Boundary condition load/Function=1e8*t; -5e8*t", "Output/Write VTU=false",
-                    "Load stepping/Maximum cut-backs=1", name="strain-far", expect_status=2)
-    check("Note: the loads reach a nodal force of 2.5e+08, 5e+05 times the stiffest body's Young's modulus" in log,
-          "a failed step at a strain of 5e5 names the loads' size")
+    rows, log, _ = run(block, "Boundary condition load/Function=1e8*t; -5e8*t", "Output/Write VTU=false",
+                       name="strain-round-off")
+    check("cutting back" not in log and "is within the round-off floor" in log and "that the loads set" in log,
+          "a strain of 5e5: no cut-back, accepted at the round-off floor that the loads set")
+    close(float(rows[-1]["reaction_bottom_y"]), 1e9, 1e-8, "the reaction balances the load (5e8 x 2)")
+    _, log, _ = run(block, "Boundary condition load/Function=0; 5e5*t", "Output/Write VTU=false",
+                    "Discretization/Geometric nonlinearity=true", "Load stepping/Maximum cut-backs=1",
+                    name="strain-fold", expect_status=2)
+    check("Note: the loads reach a nodal force of 2.5e+05, 500 times the stiffest body's Young's modulus" in log,
+          "a failed step at a strain of 500 names the loads' size")
 
 
 def case_initial_overclosure():

@@ -160,7 +160,9 @@ namespace glide
 
     /// The scaled residual (units of residual_scale()) that round-off
     /// alone can leave: 10 machine epsilons times the largest P-wave
-    /// modulus lambda + 2 mu of the deformable bodies over E_min. A stress
+    /// modulus lambda + 2 mu of the deformable bodies over E_min, or times
+    /// the largest scaled nodal load if that is larger (loads that strain
+    /// the bodies by hundreds; after check_inputs()). A stress
     /// lambda ln J (or lambda tr eps) is computed from a volume change that
     /// carries round-off of a few epsilon, so a nearly incompressible or a
     /// much stiffer body leaves residual noise of about that size (3D
@@ -168,6 +170,10 @@ namespace glide
     /// the residual stalled at 1.1e-10 to 1.6e-10, floor 3.7e-10).
     double
     round_off_floor() const;
+
+    /// Whether the loads, not the stiffest body, set round_off_floor().
+    bool
+    round_off_floor_from_loads() const;
 
     /// Young's modulus of body @p b, +infinity for a rigid body.
     double
@@ -383,6 +389,9 @@ namespace glide
     std::vector<std::string>                                  holding_hints;
     double max_youngs_modulus = 1., min_youngs_modulus = 1.,
            reference_area = 1.;
-    bool axisymmetric;
+    /// The largest nodal load at the first and the last load factor, in
+    /// units of residual_scale() (set by check_inputs()).
+    double largest_scaled_load = 0.;
+    bool   axisymmetric;
   };
 } // namespace glide

@@ -23,7 +23,13 @@ namespace glide
     /// problem from its bodies, Elasticity::round_off_floor(), not read
     /// from the scene): a solve that stops above the tolerance but at or
     /// below this counts as converged, and says so (Result::at_floor).
-    double       round_off_floor    = 0.;
+    double round_off_floor = 0.;
+    /// A linear problem (no contact, geometrically linear; set by the
+    /// problem, not read): its first Newton step is the solution, so KINSOL
+    /// takes it whatever its length. Otherwise KINSOL's default bound on a
+    /// step (1000 in its scaled 2-norm, or 1000 ||D_u u_0||) stands, which
+    /// shortens the wild first steps of a body held only by contact.
+    bool         linear_problem     = false;
     unsigned int maximum_iterations = 25;
     /// Jacobian re-use: 1 assembles the Jacobian every iteration.
     unsigned int maximum_setup_calls = 1;
