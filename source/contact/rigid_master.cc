@@ -7,6 +7,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 namespace glide
@@ -159,10 +160,29 @@ namespace glide
         P -= outer_product(cylinder_axis, cylinder_axis);
       }
     const double r = d.norm();
+    // At the centre (or on the axis) the normal is undefined. A node
+    // there lies a whole radius inside the circle: most often a 'Radius'
+    // far beyond the scene (1e20 with the centre next to the slave) or a
+    // misplaced centre, so the message names them (it said "a slave node
+    // lies on the axis" for a slave 1e20 deep inside).
     if (!(r > 1e-12 * radius))
-      throw std::runtime_error(
-        "a slave node lies on the axis or at the center of the rigid master, "
-        "where its normal is undefined");
+      {
+        std::ostringstream text;
+        text << std::setprecision(4) << "Parameter '" << path
+             << "': the slave node at (";
+        for (unsigned int k = 0; k < dim; ++k)
+          text << (k ? ", " : "") << x[k];
+        text << ") lies at the "
+             << (dim == 3 && type == MasterType::rigid_circle ? "axis" :
+                                                                "centre")
+             << " of the rigid master (" << r
+             << " from it, less than 1e-12 of 'Radius' = " << radius
+             << "), where its normal is undefined: the slave "
+             << (inside ? "is there" :
+                          "starts a whole radius inside the master")
+             << ". Check 'Point' (the centre), 'Radius' and 'Slave inside'.";
+        throw InputError(text.str());
+      }
     const Tensor<1, dim> e          = d / r;
     const Tensor<2, dim> tangential = (P - outer_product(e, e)) / r;
     const double         sign       = inside ? -1. : 1.;

@@ -473,6 +473,34 @@ namespace glide
             "geometrically linear scene ('Discretization/Geometric "
             "nonlinearity = false').");
 
+    // Every result file's name fits the file systems' limit of 255 bytes
+    // (NAME_MAX), with room for 6-digit step numbers and the '.tmp' of a
+    // file being written: <scene name>-NNNNNN.vtu.tmp and
+    // contact-<pair>-NNNNNN.csv.tmp. A longer name failed with an
+    // input/output error after the first load step.
+    constexpr std::size_t name_max     = 255;
+    const std::size_t     scene_suffix = std::string("-000000.vtu.tmp").size();
+    require(name.size() + scene_suffix <= name_max,
+            "The scene name '" + name.substr(0, 40) + "...' has " +
+              std::to_string(name.size()) +
+              " characters: the result files are named <scene "
+              "name>-NNNN.vtu, and file names may have at most " +
+              std::to_string(name_max) +
+              " bytes. Set 'Scene name' to at most " +
+              std::to_string(name_max - scene_suffix) + " characters.");
+    const std::size_t pair_affix =
+      std::string("contact-").size() + std::string("-000000.csv.tmp").size();
+    for (const auto &cp : contact_pairs)
+      require(cp.name.size() + pair_affix <= name_max,
+              "The contact pair name '" + cp.name.substr(0, 40) + "...' has " +
+                std::to_string(cp.name.size()) +
+                " characters: its result files are named contact-<pair>-"
+                "NNNN.csv, and file names may have at most " +
+                std::to_string(name_max) +
+                " bytes. Give the pair a name of at most " +
+                std::to_string(name_max - pair_affix) +
+                " characters in 'Contact pairs'.");
+
     check_size();
 
     for (const auto &b : bodies)
