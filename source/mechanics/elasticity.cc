@@ -19,6 +19,7 @@
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <sstream>
 
 namespace glide
@@ -1173,6 +1174,22 @@ namespace glide
   std::vector<std::vector<typename Elasticity<dim>::FreeMotion>>
   Elasticity<dim>::free_motions() const
   {
+    std::vector<unsigned int> body_of(scene.bodies.size());
+    std::iota(body_of.begin(), body_of.end(), 0u);
+    return free_motions_of(
+      [](const typename DoFHandler<dim>::active_cell_iterator &cell) {
+        return static_cast<unsigned int>(cell->material_id());
+      },
+      body_of);
+  }
+
+  template <int dim>
+  std::vector<std::vector<typename Elasticity<dim>::FreeMotion>>
+  Elasticity<dim>::free_motions_of(
+    const std::function<unsigned int(
+      const typename DoFHandler<dim>::active_cell_iterator &)> &group,
+    const std::vector<unsigned int>                            &body_of) const
+  {
     // The rigid-body motions of a body: translations, and rotations
     // about its center c scaled by its size L (so that every mode is of
     // order 1 on the body): 2D x, y, z-rotation; axisymmetric only the
@@ -1182,7 +1199,7 @@ namespace glide
     // meshed rigid body) acts against it: the null space of the Gram
     // matrix G = sum over the body's constrained vertex DoFs of m m^T,
     // with m the values of the modes there.
-    const unsigned int  n_bodies = scene.bodies.size();
+    const unsigned int  n_bodies = body_of.size(); // groups of cells
     const unsigned int  n_modes  = axisymmetric ? 1 : dim * (dim + 1) / 2;
     std::vector<double> lower(n_bodies * dim,
                               std::numeric_limits<double>::max()),
@@ -1192,7 +1209,7 @@ namespace glide
         for (const auto v : cell->vertex_indices())
           for (unsigned int d = 0; d < dim; ++d)
             {
-              const unsigned int k = cell->material_id() * dim + d;
+              const unsigned int k = group(cell) * dim + d;
               lower[k]             = std::min(lower[k], cell->vertex(v)[d]);
               upper[k]             = std::max(upper[k], cell->vertex(v)[d]);
             }
@@ -1252,9 +1269,8 @@ namespace glide
                 homogeneous_constraints.get_constraint_entries(i);
               if (entries && !entries->empty())
                 continue; // a hanging node, not a support
-              const auto m =
-                mode_values(cell->material_id(), cell->vertex(v), c);
-              double *G = &gram[cell->material_id() * n_modes * n_modes];
+              const auto m = mode_values(group(cell), cell->vertex(v), c);
+              double    *G = &gram[group(cell) * n_modes * n_modes];
               for (unsigned int a = 0; a < n_modes; ++a)
                 for (unsigned int b = 0; b < n_modes; ++b)
                   G[a * n_modes + b] += m[a] * m[b];
@@ -1265,7 +1281,7 @@ namespace glide
     std::vector<std::vector<FreeMotion>> result(n_bodies);
     for (unsigned int b = 0; b < n_bodies; ++b)
       {
-        if (scene.bodies[b].rigid)
+        if (scene.bodies[body_of[b]].rigid)
           continue;
         FullMatrix<double> G(n_modes, n_modes);
         for (unsigned int i = 0; i < n_modes; ++i)
@@ -1346,6 +1362,54 @@ namespace glide
             result[b].push_back(motion);
           }
       }
+    return result;
+  }
+
+  template <int dim>
+  typename Elasticity<dim>::Parts
+  Elasticity<dim>::parts() const
+  {
+    // Connected parts on the coarse mesh, which every process holds
+    // whole (refinement does not change what is connected): coarse cells
+    // of one body that share a vertex are one part (union-find).
+    std::vector<unsigned int> root(triangulation.n_vertices());
+    std::iota(root.begin(), root.end(), 0u);
+    const auto find = [&](unsigned int v) {
+      while (root[v] != v)
+        v = root[v] = root[root[v]];
+      return v;
+    };
+    for (const auto &cell : triangulation.cell_iterators_on_level(0))
+      for (const auto v : cell->vertex_indices())
+        root[find(cell->vertex_index(v))] = find(cell->vertex_index(0));
+    Parts                                                         result;
+    std::map<std::pair<unsigned int, unsigned int>, unsigned int> number;
+    std::vector<Point<dim>>                                       lower, upper;
+    result.part_of_coarse_cell.resize(triangulation.n_cells(0));
+    for (const auto &cell : triangulation.cell_iterators_on_level(0))
+      {
+        const auto key =
+          std::make_pair(static_cast<unsigned int>(cell->material_id()),
+                         find(cell->vertex_index(0)));
+        const auto [it, added] =
+          number.emplace(key, static_cast<unsigned int>(result.body.size()));
+        if (added)
+          {
+            result.body.push_back(key.first);
+            lower.push_back(cell->vertex(0));
+            upper.push_back(cell->vertex(0));
+          }
+        const unsigned int part                   = it->second;
+        result.part_of_coarse_cell[cell->index()] = part;
+        for (const auto v : cell->vertex_indices())
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              lower[part][d] = std::min(lower[part][d], cell->vertex(v)[d]);
+              upper[part][d] = std::max(upper[part][d], cell->vertex(v)[d]);
+            }
+      }
+    for (unsigned int p = 0; p < lower.size(); ++p)
+      result.center.push_back(Point<dim>(0.5 * (lower[p] + upper[p])));
     return result;
   }
 
@@ -1506,6 +1570,68 @@ namespace glide
           "e.g. 'Type = fixed' on one surface of '" +
           name + "', or symmetry conditions.");
       }
+
+    // A body of separate parts (a mesh file may hold several): each part
+    // must be held on its own. The test above sees the whole body only: a
+    // second, unsupported square in a body's mesh file ran with exit 0 and
+    // a singular matrix (the part's displacement whatever the solver made
+    // of it).
+    {
+      const auto                p = parts();
+      std::vector<unsigned int> n_parts(scene.bodies.size(), 0);
+      for (const auto b : p.body)
+        ++n_parts[b];
+      if (*std::max_element(n_parts.begin(), n_parts.end()) > 1)
+        {
+          const auto part_motions = free_motions_of(
+            [&](const typename DoFHandler<dim>::active_cell_iterator &cell) {
+              // Its coarse ancestor (deal.II 9.4 keeps the map from
+              // coarse cell id to index private).
+              typename Triangulation<dim>::cell_iterator c = cell;
+              while (c->level() > 0)
+                c = c->parent();
+              return p.part_of_coarse_cell[c->index()];
+            },
+            p.body);
+          for (unsigned int k = 0; k < p.body.size(); ++k)
+            {
+              const unsigned int b = p.body[k];
+              if (n_parts[b] < 2 || part_motions[k].empty() ||
+                  !motions[b].empty())
+                continue;
+              std::string list, center;
+              for (unsigned int i = 0; i < part_motions[k].size(); ++i)
+                list += (i == 0                          ? "" :
+                         i + 1 == part_motions[k].size() ? " and " :
+                                                           ", ") +
+                        part_motions[k][i].text;
+              for (unsigned int d = 0; d < dim; ++d)
+                center += (d ? ", " : "") + short_number(p.center[k][d]);
+              const std::string &name = scene.bodies[b].name;
+              const std::string  what =
+                "body '" + name + "' has " + std::to_string(n_parts[b]) +
+                " separate parts (cells that share no vertex, e.g. meshed "
+                "apart in its mesh file), and its part around (" +
+                center + ")";
+              if (in_contact.count(name) || node_set_slave)
+                {
+                  holding_hints.push_back(
+                    what + " is held against its " + list +
+                    " only by contact: while that contact is open nothing "
+                    "holds it. Hold each part by a boundary condition, or "
+                    "make it a body of its own.");
+                  continue;
+                }
+              throw InputError(
+                file + "B" + what.substr(1) +
+                " is not held: nothing stops its " + list +
+                " (no fixed, displacement or symmetry condition acts on "
+                "that part). Hold each part with a boundary condition on a "
+                "surface of it, join the parts in the mesh, or make each "
+                "part a body of its own.");
+            }
+        }
+    }
 
     // Every function of the scene is finite at the first and the last
     // load factor (CheckedFunction throws otherwise), before anything is

@@ -220,6 +220,18 @@ namespace glide
     std::vector<std::vector<FreeMotion>>
     free_motions() const;
 
+    /// The connected parts of the bodies: cells of one body that share no
+    /// vertex, even through other cells, are separate parts (a mesh file
+    /// may hold several). On every process.
+    struct Parts
+    {
+      std::vector<unsigned int>       part_of_coarse_cell;
+      std::vector<unsigned int>       body;   ///< of each part
+      std::vector<dealii::Point<dim>> center; ///< of each part's box
+    };
+    Parts
+    parts() const;
+
     /// Of the surfaces @p names (<body>.<surface>, on any process), those
     /// that are round about the rotation @p m: the velocity of the turn
     /// has no component along any face normal beyond 1 % of its size
@@ -387,6 +399,13 @@ namespace glide
     std::vector<dealii::types::boundary_id>                   symmetry_ids[3];
     std::map<std::string, const NodeSetParameters *>          scene_node_sets;
     std::vector<std::string>                                  holding_hints;
+    /// free_motions() of groups of cells: @p group gives a cell's group,
+    /// @p body_of each group's body.
+    std::vector<std::vector<FreeMotion>>
+    free_motions_of(
+      const std::function<unsigned int(
+        const typename dealii::DoFHandler<dim>::active_cell_iterator &)> &group,
+      const std::vector<unsigned int> &body_of) const;
     double max_youngs_modulus = 1., min_youngs_modulus = 1.,
            reference_area = 1.;
     /// The largest nodal load at the first and the last load factor, in
