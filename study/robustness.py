@@ -35,6 +35,11 @@ FORMULATIONS = {
     "nts-small": {"Sliding": "small"},
     "sts-small": {"Sliding": "small", "Formulation": "surface to surface"},
     "mortar": {"Formulation": "mortar"},
+    # Penalty (automatic stiffness 1000 E_pair / h), solved as a perturbed
+    # Lagrangian like hard contact (doc/theory/nonlinear-solution.md).
+    "nts-finite-f0.2-penalty": {"Smoothing fraction": "0.2", "Enforcement": "penalty"},
+    "nts-small-penalty": {"Sliding": "small", "Enforcement": "penalty"},
+    "mortar-penalty": {"Formulation": "mortar", "Enforcement": "penalty"},
 }
 
 UNITS = {"mm": (10.0, 1.0), "SI": (0.01, 1e6)}  # radius, stress unit in MPa

@@ -876,6 +876,17 @@ namespace glide
       {
         if (pair.enforcement->block_size() == 0)
           continue;
+        // Penalty: each multiplier follows from the displacements (its row
+        // has a diagonal), whatever rows its force reaches; no node of its
+        // own is needed.
+        if (pair.enforcement->compliant())
+          {
+            for (const auto &node : pair.nodes)
+              for (unsigned int j = 0; j < pair.enforcement->block_size(); ++j)
+                blocks.emplace_back(node.multiplier + j,
+                                    std::vector<types::global_dof_index>());
+            continue;
+          }
         const std::string name = "contact pair '" + pair.parameters->name + "'";
         if (pair.enforcement->block_size() != 1 ||
             !pair.formulation->force_on_own_node())
@@ -1203,7 +1214,7 @@ namespace glide
             if (s[i].found() && s[i].gap - clearance <= 0.01 * node.size)
               {
                 U_out[node.multiplier] =
-                  node.c * std::max(0., s[i].gap - clearance);
+                  pair.enforcement->closing_multiplier(node, s[i].gap);
                 ++n_closed;
               }
           }

@@ -111,11 +111,14 @@ namespace glide
   typename ContactEnforcement<dim>::Force
   PenaltyEnforcement<dim>::force(const SlaveNode<dim>  &node,
                                  const Constraint<dim> &s,
-                                 const VectorType &) const
+                                 const VectorType      &U) const
   {
     Force f;
-    f.lambda = s.found() ? node.k * std::max(0., -s.gap) : 0.;
-    f.closed = s.found() && s.gap < 0.;
+    f.lambda = U[node.multiplier];
+    // Closed where lambda - c (g + lambda / k) >= 0: then C = c (g +
+    // lambda / k) (lambda -> -k g); otherwise C = lambda (open).
+    const double c = constant(node);
+    f.closed = s.found() && f.lambda - c * (s.gap + f.lambda / node.k) >= 0.;
     return f;
   }
 
@@ -131,20 +134,52 @@ namespace glide
                                  Vector<double>                       &rhs,
                                  FullMatrix<double>                   &K) const
   {
-    idx.clear();
     if (!s.found())
-      return;
+      {
+        idx.assign(1, node.multiplier);
+        rhs.reinit(1);
+        K.reinit(1, 1);
+        rhs(0)  = f.lambda;
+        K(0, 0) = 1.;
+        return;
+      }
     const unsigned int m = l.dofs.size();
     idx                  = l.dofs;
-    rhs.reinit(m);
-    K.reinit(m, m);
+    idx.push_back(node.multiplier);
+    rhs.reinit(m + 1);
+    K.reinit(m + 1, m + 1);
     Vector<double> column, row;
     displacement_block<dim>(
       l, f.lambda, symmetrized, stabilization, column, row, rhs, K);
-    if (f.closed)
-      for (unsigned int a = 0; a < m; ++a)
-        for (unsigned int b = 0; b < m; ++b)
-          K(a, b) += node.k * column(a) * row(b);
+    const double c = constant(node);
+    rhs(m)         = f.closed ? c * (l.gap + f.lambda / node.k) : f.lambda;
+    for (unsigned int a = 0; a < m; ++a)
+      {
+        K(a, m) = -column(a);
+        K(m, a) = f.closed ? c * row(a) : 0.;
+      }
+    K(m, m) = f.closed ? c / node.k : 1.;
+  }
+
+  template <int dim>
+  double
+  PenaltyEnforcement<dim>::closing_multiplier(const SlaveNode<dim> &node,
+                                              const double          gap) const
+  {
+    // lambda - c (g + lambda / k) >= 0 for g >= 0: lambda = c g / (1 - c /
+    // k), with c <= k / 2; 1e-8 above it, so that round-off in force()
+    // cannot put the node on the open branch (it did in the mm version of
+    // a scene and not in the SI one: 5 against 2 iterations).
+    const double c = constant(node);
+    return (1. + 1e-8) * c * std::max(0., gap) / (1. - c / node.k);
+  }
+
+  template <int dim>
+  double
+  HardEnforcement<dim>::closing_multiplier(const SlaveNode<dim> &node,
+                                           const double          gap) const
+  {
+    return node.c * std::max(0., gap - clearance);
   }
 
   template <int dim>

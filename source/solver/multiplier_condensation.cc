@@ -250,6 +250,17 @@ namespace glide
           // A closed multiplier reaching this row (a master node):
           // -B_ij b_j^T A_S / |b_j|^2.
           const auto &s = states[c - n_u];
+          if (s.compliant)
+            {
+              // -B_ij C_j / E_jj (penalty).
+              for_each(blocks[c - n_u].multiplier,
+                       [&, w = -v / s.open_diagonal](const auto   c2,
+                                                     const double v2) {
+                         if (c2 < n_u)
+                           emit(c2, w * v2);
+                       });
+              return;
+            }
           if (!s.closed)
             return;
           for (unsigned int l = 0; l < s.b.size(); ++l)
@@ -280,10 +291,8 @@ namespace glide
         E = values[e];
       else
         C = std::max(C, std::abs(values[e]));
-    s.closed = (E == 0.);
-    if (!s.closed && C != 0.)
-      throw std::logic_error("MultiplierCondensation: an open multiplier "
-                             "row with displacement entries");
+    s.closed        = (E == 0.);
+    s.compliant     = !s.closed && C != 0.;
     s.open_diagonal = E;
     s.b.assign(block.dofs.size(), 0.);
     s.b_norm2 = 0.;
@@ -359,9 +368,13 @@ namespace glide
     for (unsigned int j = first_own; j < end_own; ++j)
       {
         const auto &s = states[j];
-        packed.insert(
-          packed.end(),
-          {s.closed ? 1. : 0., s.open_diagonal, s.scale, s.b_norm2});
+        packed.insert(packed.end(),
+                      {s.closed    ? 1. :
+                       s.compliant ? 2. :
+                                     0.,
+                       s.open_diagonal,
+                       s.scale,
+                       s.b_norm2});
         packed.insert(packed.end(), s.b.begin(), s.b.end());
         if (s.closed)
           {
@@ -389,7 +402,8 @@ namespace glide
           {
             State             &s = states[j];
             const unsigned int d = blocks[j].dofs.size();
-            s.closed             = all[p][i] != 0.;
+            s.closed             = all[p][i] == 1.;
+            s.compliant          = all[p][i] == 2.;
             s.open_diagonal      = all[p][i + 1];
             s.scale              = all[p][i + 2];
             s.b_norm2            = all[p][i + 3];
@@ -439,6 +453,9 @@ namespace glide
             if (states[j].closed && (j < first_own || j >= end_own))
               for (const auto d : blocks[j].dofs)
                 needed.insert(static_cast<int>(d));
+            // A compliant multiplier's row (C_j) for its fill.
+            if (states[j].compliant && (j < first_own || j >= end_own))
+              needed.insert(static_cast<int>(blocks[j].multiplier));
           }
       }
     const auto            &A = J->trilinos_matrix();
@@ -504,7 +521,7 @@ namespace glide
     for (unsigned int j = first_own; j < end_own && failure.empty(); ++j)
       for (const auto &entries : states[j].foreign)
         for (const auto &[k, value] : entries)
-          if (states[k].closed)
+          if (states[k].closed || states[k].compliant)
             {
               failure         = "a slave node's rows hold the force of another "
                                 "closed slave node";
@@ -612,6 +629,24 @@ namespace glide
                 rhs_reads.push_back(blocks[j].multiplier);
             }
       }
+    compliant_rows.assign(blocks.size(), {});
+    for (unsigned int j = first_own; j < end_own; ++j)
+      if (states[j].compliant)
+        {
+          row_of_j(blocks[j].multiplier, n, values, columns);
+          for (int e = 0; e < n; ++e)
+            if (columns[e] < n_u && values[e] != 0.)
+              {
+                compliant_rows[j].emplace_back(columns[e], values[e]);
+                const int jc = block_of[columns[e]];
+                if (jc >= 0 && states[jc].closed)
+                  solution_reads.insert(solution_reads.end(),
+                                        blocks[jc].dofs.begin(),
+                                        blocks[jc].dofs.end());
+                else
+                  solution_reads.push_back(columns[e]);
+              }
+        }
     closed_rows.assign(blocks.size(), {});
     for (unsigned int j = first_own; j < end_own; ++j)
       if (states[j].closed)
@@ -808,6 +843,15 @@ namespace glide
       {
         const auto &s     = states[j];
         const auto &block = blocks[j];
+        if (s.compliant)
+          {
+            // dl_j = (h_j - C_j du) / E_jj.
+            double r = b(block.multiplier);
+            for (const auto &[column, value] : compliant_rows[j])
+              r -= value * du[column];
+            x(block.multiplier) = r / s.open_diagonal;
+            continue;
+          }
         if (!s.closed)
           {
             x(block.multiplier) = b(block.multiplier) / s.open_diagonal;

@@ -341,3 +341,41 @@ TEST(MultiplierCondensation, RejectsInconsistentBlocks)
   EXPECT_NO_THROW(MultiplierCondensation(
     s.blocks, s.n_u, complete_index_set(s.n), MPI_COMM_WORLD));
 }
+
+// Penalty contact is solved as a perturbed Lagrangian: a closed penalty
+// multiplier's row holds c dg/du and the diagonal c / k, so it follows from
+// the displacements, dl_j = (h_j - C_j du) / E_jj, whatever rows its force
+// acts on (surface to surface spreads it over several nodes; Contact gives
+// such blocks no node of their own). Mixed with closed and open hard
+// multipliers, the solution through the condensed system must equal Gauss
+// elimination of the whole system; without the compliant fill -B C / E it
+// does not (the penalty stiffness would be missing).
+TEST(MultiplierCondensation, CompliantPenaltyMultipliers)
+{
+  for (const unsigned int dim : {2u, 3u})
+    {
+      System s = make_system(dim, {true, false, true, false, true}, dim, 13);
+      std::mt19937                           rng(dim);
+      std::uniform_real_distribution<double> u(-1., 1.);
+      const unsigned int                     n_s = 5;
+      for (const unsigned int j : {1u, 3u})
+        {
+          const unsigned int m = s.n_u + j;
+          const double       c = 10. * s.n_u;
+          for (unsigned int i = 0; i < s.n_u; ++i)
+            s.J(m, i) = 0.05 * c * u(rng);
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const double normal = s.J(dim * j + d, m);
+              s.J(m, dim * j + d) = -c * normal;
+              for (unsigned int a = 0; a < 3; ++a)
+                s.J(m, dim * (n_s + a) + d) = 0.3 * c * normal;
+              // A share of the force on a node that is no slave node.
+              s.J(dim * (n_s + 3 + j % 3) + d, m) = 0.4 * u(rng);
+            }
+          s.J(m, m) = 0.1; // c / k (the default k = 1000 c gives 1e-3)
+          s.blocks[j].dofs.clear();
+        }
+      check(s);
+    }
+}

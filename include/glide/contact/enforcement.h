@@ -5,6 +5,7 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -17,7 +18,7 @@ namespace glide
    * constraint's rows and columns of the residual and Jacobian. Hard
    * enforcement adds a block of block_size() multipliers per constraint
    * (the normal force now; friction adds dim - 1 tangential ones without a
-   * redesign); penalty adds none.
+   * redesign); penalty one (a perturbed Lagrangian).
    */
   template <int dim>
   class ContactEnforcement
@@ -41,6 +42,16 @@ namespace glide
     /// Multipliers per constraint.
     virtual unsigned int
     block_size() const = 0;
+
+    /// Whether a closed constraint's multiplier row keeps a diagonal
+    /// entry (penalty: lambda + k dg = 0 in Newton, the multiplier known
+    /// from the displacements), so that the linear solver can eliminate it
+    /// whatever rows its force acts on (MultiplierCondensation).
+    virtual bool
+    compliant() const
+    {
+      return false;
+    }
 
     /// The force of constraint @p s of node @p node at iterate @p U.
     virtual Force
@@ -67,6 +78,12 @@ namespace glide
           std::vector<dealii::types::global_dof_index> &idx,
           dealii::Vector<double>                       &rhs,
           dealii::FullMatrix<double>                   &K) const = 0;
+
+    /// The multiplier that puts a node with gap @p gap (>= 0, small) on
+    /// the closed branch of its complementarity function: the start of a
+    /// pair's first contact (Contact::close_touching_nodes()).
+    virtual double
+    closing_multiplier(const SlaveNode<dim> &node, const double gap) const = 0;
   };
 
   /**
@@ -118,12 +135,31 @@ namespace glide
           dealii::Vector<double>                       &rhs,
           dealii::FullMatrix<double>                   &K) const override;
 
+    double
+    closing_multiplier(const SlaveNode<dim> &node,
+                       const double          gap) const override;
+
   private:
     const double clearance;
   };
 
-  /// Penalty contact: lambda = k max(0, -g), k the penalty stiffness times
-  /// the node's area (R4).
+  /**
+   * Penalty contact: the force lambda = k max(0, -g), k the penalty
+   * stiffness times the node's area (R4), solved as a perturbed Lagrangian
+   * (Simo, Wriggers and Taylor 1985): one multiplier per constraint, as for
+   * hard contact, with the complementarity function of the compliant gap
+   * g + lambda / k,
+   *   C(lambda, g) = lambda - max(0, lambda - c (g + lambda / k)) = 0,
+   * which holds exactly when lambda = k max(0, -g): the answer is the
+   * penalty method's. The multiplier carries the active set from one
+   * iterate to the next as in hard contact (a closed node stays closed
+   * while lambda > c (g + lambda / k)); decided by the gap alone, a node
+   * whose penetration lambda / k (1e-3 of a facet's strain with the
+   * default k) is below what one Newton step changes its gap by switched
+   * in every iteration, and the default scene did not converge
+   * (doc/theory/nonlinear-solution.md, "Penalty"). c = min(E_pair A / h,
+   * k / 2).
+   */
   template <int dim>
   class PenaltyEnforcement : public ContactEnforcement<dim>
   {
@@ -140,8 +176,18 @@ namespace glide
     unsigned int
     block_size() const override
     {
-      return 0;
+      return 1;
     }
+
+    bool
+    compliant() const override
+    {
+      return true;
+    }
+
+    double
+    closing_multiplier(const SlaveNode<dim> &node,
+                       const double          gap) const override;
 
     Force
     force(const SlaveNode<dim>  &node,
@@ -158,6 +204,14 @@ namespace glide
           std::vector<dealii::types::global_dof_index> &idx,
           dealii::Vector<double>                       &rhs,
           dealii::FullMatrix<double>                   &K) const override;
+
+  private:
+    /// The complementarity constant c = min(E_pair A / h, k / 2).
+    static double
+    constant(const SlaveNode<dim> &node)
+    {
+      return std::min(node.c, 0.5 * node.k);
+    }
   };
 
   /// The enforcement the pair's parameters name.

@@ -28,6 +28,10 @@ namespace glide
    * hold the multiplier j and no other, with the column b_j = B(S_j, j)
    * (the force direction on the node). Then
    *  - an open multiplier (E_jj = 1, C_j = 0) is known: dl_j = h_j / E_jj;
+   *  - a compliant one (E_jj != 0 and C_j != 0: penalty contact, solved as
+   *    a perturbed Lagrangian) is dl_j = (h_j - C_j du) / E_jj; in every
+   *    row i that holds it this adds -B_ij C_j / E_jj, the penalty
+   *    stiffness;
    *  - a closed one (E_jj = 0) follows from the node's rows projected on
    *    b_j: dl_j = b_j^T (f_S - A_S du) / |b_j|^2. Put into every other
    *    row i that holds it (the master nodes the force reaches), this adds
@@ -137,7 +141,10 @@ namespace glide
     /// A block at the current Jacobian.
     struct State
     {
-      bool                closed        = false;
+      bool closed = false;
+      /// Not closed, with displacement entries C_j in its row (penalty, a
+      /// perturbed Lagrangian: E_jj = c / k): dl_j = (h_j - C_j du) / E_jj.
+      bool                compliant     = false;
       double              open_diagonal = 1.; ///< E_jj of an open multiplier
       std::vector<double> b;                  ///< B(S_j, j)
       double              b_norm2 = 0.;
@@ -223,6 +230,10 @@ namespace glide
       double                          value;
     };
     std::vector<Coupling> couplings;
+    /// Compliant blocks of this process: the displacement entries of the
+    /// multiplier's row (C_j).
+    std::vector<std::vector<std::pair<dealii::types::global_dof_index, double>>>
+      compliant_rows;
     /// Closed blocks: the displacement entries of each of the node's rows.
     std::vector<std::vector<
       std::vector<std::pair<dealii::types::global_dof_index, double>>>>
