@@ -692,6 +692,20 @@ namespace glide
       sets += (sets.empty() ? "" : ", ") + n;
     if (!sets.empty())
       list += " (node sets from mesh files: " + sets + ")";
+    // A name from a mesh file with a comma in it cannot be named: a
+    // scene's lists split at commas.
+    std::string with_comma;
+    for (const auto &[n, ids] : surface_ids)
+      if (n.find(',') != std::string::npos)
+        with_comma += (with_comma.empty() ? "'" : ", '") + n + "'";
+    for (const auto &n : file_node_sets)
+      if (n.find(',') != std::string::npos)
+        with_comma += (with_comma.empty() ? "'" : ", '") + n + "'";
+    if (!with_comma.empty())
+      list += ". Names with a comma (" + with_comma +
+              ") cannot be given in a scene, whose lists split at commas: "
+              "rename those groups in the mesh file (spaces, dots and "
+              "underscores work)";
     return list;
   }
 

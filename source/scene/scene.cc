@@ -410,6 +410,16 @@ namespace glide
     for (const auto &n : node_sets)
       node_set_names.insert(n.name);
 
+    // Lists split at commas: a mesh file's group named 'top, loaded'
+    // becomes 'part.top' and 'loaded'.
+    const auto comma_hint = [](const std::string &list) -> std::string {
+      if (list.find(',') == std::string::npos)
+        return "";
+      return " The list '" + list +
+             "' was split at its commas; a surface or node set whose name "
+             "has a comma (a group of a mesh file) cannot be named: rename "
+             "it in the mesh file.";
+    };
     for (const auto &bc : boundary_conditions)
       {
         const std::string path = "Boundary condition " + bc.name + "/Surface";
@@ -428,7 +438,9 @@ namespace glide
             require(dot != std::string::npos,
                     "Parameter '" + path + "' = '" + surface +
                       "' is not of the form <body>.<surface> (or the name of "
-                      "a node set, for forces and prescribed displacements).");
+                      "a node set, for forces and prescribed "
+                      "displacements)." +
+                      comma_hint(bc.surface));
             require(body_names.count(surface.substr(0, dot)) > 0,
                     "Parameter '" + path + "' = '" + surface +
                       "' names the body '" + surface.substr(0, dot) +
@@ -464,7 +476,8 @@ namespace glide
                       body_names.count(surface.substr(0, dot)) > 0,
                     "Parameter '" + path + "' = '" + surface +
                       "' is not a surface <body>.<surface> of a body of this "
-                      "scene, nor the name of a node set.");
+                      "scene, nor the name of a node set." +
+                      comma_hint(cp.slave));
           }
       }
 
