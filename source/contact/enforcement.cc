@@ -51,6 +51,55 @@ namespace glide
               K(a, b) += stabilization * v(a) * v(b);
         }
     }
+
+    /**
+     * The local rows of a constraint with one multiplier (hard and
+     * penalty): the displacement block, the force column -G, and the
+     * multiplier row: closed, @p c times dg/du with the residual
+     * @p closed_residual and the diagonal @p closed_diagonal; open (or
+     * without a gap: beyond the master's end, no anchor, a failed
+     * projection), C = lambda.
+     */
+    template <int dim>
+    void
+    multiplier_rows(const SlaveNode<dim>                             &node,
+                    const Constraint<dim>                            &s,
+                    const typename ContactEnforcement<dim>::Force    &f,
+                    const typename MasterSurface<dim>::Linearization &l,
+                    const bool                            symmetrized,
+                    const double                          stabilization,
+                    const double                          c,
+                    const double                          closed_residual,
+                    const double                          closed_diagonal,
+                    std::vector<types::global_dof_index> &idx,
+                    Vector<double>                       &rhs,
+                    FullMatrix<double>                   &K)
+    {
+      if (!s.found())
+        {
+          idx.assign(1, node.multiplier);
+          rhs.reinit(1);
+          K.reinit(1, 1);
+          rhs(0)  = f.lambda;
+          K(0, 0) = 1.;
+          return;
+        }
+      const unsigned int m = l.dofs.size();
+      idx                  = l.dofs;
+      idx.push_back(node.multiplier);
+      rhs.reinit(m + 1);
+      K.reinit(m + 1, m + 1);
+      Vector<double> column, row;
+      displacement_block<dim>(
+        l, f.lambda, symmetrized, stabilization, column, row, rhs, K);
+      rhs(m) = f.closed ? closed_residual : f.lambda;
+      for (unsigned int a = 0; a < m; ++a)
+        {
+          K(a, m) = -column(a);
+          K(m, a) = f.closed ? c * row(a) : 0.;
+        }
+      K(m, m) = f.closed ? closed_diagonal : 1.;
+    }
   } // namespace
 
   template <int dim>
@@ -79,32 +128,18 @@ namespace glide
                               Vector<double>                       &rhs,
                               FullMatrix<double>                   &K) const
   {
-    if (!s.found())
-      {
-        // No gap (beyond the end of the master, no anchor, failed
-        // projection): open, lambda -> 0.
-        idx.assign(1, node.multiplier);
-        rhs.reinit(1);
-        K.reinit(1, 1);
-        rhs(0)  = f.lambda;
-        K(0, 0) = 1.;
-        return;
-      }
-    const unsigned int m = l.dofs.size();
-    idx                  = l.dofs;
-    idx.push_back(node.multiplier);
-    rhs.reinit(m + 1);
-    K.reinit(m + 1, m + 1);
-    Vector<double> column, row;
-    displacement_block<dim>(
-      l, f.lambda, symmetrized, stabilization, column, row, rhs, K);
-    rhs(m) = f.closed ? node.c * (l.gap - clearance) : f.lambda;
-    for (unsigned int a = 0; a < m; ++a)
-      {
-        K(a, m) = -column(a);
-        K(m, a) = f.closed ? node.c * row(a) : 0.;
-      }
-    K(m, m) = f.closed ? 0. : 1.;
+    multiplier_rows<dim>(node,
+                         s,
+                         f,
+                         l,
+                         symmetrized,
+                         stabilization,
+                         node.c,
+                         node.c * (l.gap - clearance),
+                         0.,
+                         idx,
+                         rhs,
+                         K);
   }
 
   template <int dim>
@@ -134,31 +169,19 @@ namespace glide
                                  Vector<double>                       &rhs,
                                  FullMatrix<double>                   &K) const
   {
-    if (!s.found())
-      {
-        idx.assign(1, node.multiplier);
-        rhs.reinit(1);
-        K.reinit(1, 1);
-        rhs(0)  = f.lambda;
-        K(0, 0) = 1.;
-        return;
-      }
-    const unsigned int m = l.dofs.size();
-    idx                  = l.dofs;
-    idx.push_back(node.multiplier);
-    rhs.reinit(m + 1);
-    K.reinit(m + 1, m + 1);
-    Vector<double> column, row;
-    displacement_block<dim>(
-      l, f.lambda, symmetrized, stabilization, column, row, rhs, K);
     const double c = constant(node);
-    rhs(m)         = f.closed ? c * (l.gap + f.lambda / node.k) : f.lambda;
-    for (unsigned int a = 0; a < m; ++a)
-      {
-        K(a, m) = -column(a);
-        K(m, a) = f.closed ? c * row(a) : 0.;
-      }
-    K(m, m) = f.closed ? c / node.k : 1.;
+    multiplier_rows<dim>(node,
+                         s,
+                         f,
+                         l,
+                         symmetrized,
+                         stabilization,
+                         c,
+                         c * (l.gap + f.lambda / node.k),
+                         c / node.k,
+                         idx,
+                         rhs,
+                         K);
   }
 
   template <int dim>

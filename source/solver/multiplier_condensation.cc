@@ -629,6 +629,17 @@ namespace glide
                 rhs_reads.push_back(blocks[j].multiplier);
             }
       }
+    // The solution entries expand() reads for column @p c: a closed
+    // node's column is read in its frame, i.e. at all of the node's DoFs.
+    const auto read_column = [&](const types::global_dof_index c) {
+      const int jc = block_of[c];
+      if (jc >= 0 && states[jc].closed)
+        solution_reads.insert(solution_reads.end(),
+                              blocks[jc].dofs.begin(),
+                              blocks[jc].dofs.end());
+      else
+        solution_reads.push_back(c);
+    };
     compliant_rows.assign(blocks.size(), {});
     for (unsigned int j = first_own; j < end_own; ++j)
       if (states[j].compliant)
@@ -638,13 +649,7 @@ namespace glide
             if (columns[e] < n_u && values[e] != 0.)
               {
                 compliant_rows[j].emplace_back(columns[e], values[e]);
-                const int jc = block_of[columns[e]];
-                if (jc >= 0 && states[jc].closed)
-                  solution_reads.insert(solution_reads.end(),
-                                        blocks[jc].dofs.begin(),
-                                        blocks[jc].dofs.end());
-                else
-                  solution_reads.push_back(columns[e]);
+                read_column(columns[e]);
               }
         }
     closed_rows.assign(blocks.size(), {});
@@ -663,15 +668,7 @@ namespace glide
               if (columns[e] < n_u)
                 {
                   entries.emplace_back(columns[e], values[e]);
-                  // A closed node's column is read in its frame: the
-                  // solution at all of the node's DoFs.
-                  const int jc = block_of[columns[e]];
-                  if (jc >= 0 && states[jc].closed)
-                    solution_reads.insert(solution_reads.end(),
-                                          blocks[jc].dofs.begin(),
-                                          blocks[jc].dofs.end());
-                  else
-                    solution_reads.push_back(columns[e]);
+                  read_column(columns[e]);
                 }
             closed_rows[j].push_back(std::move(entries));
           }
