@@ -225,6 +225,7 @@ namespace glide
     std::array<std::set<types::global_dof_index>, dim> symmetric;
     std::map<types::global_dof_index, unsigned int>    node_index;
     std::vector<double>                                diameters;
+    std::vector<FacetId>                               ids_of_facets;
     std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
     // Master facets of this process's cells; symmetry faces of its ghost
     // cells too, since a node of an owned facet may lie on a symmetry face
@@ -298,6 +299,13 @@ namespace glide
             facet.neighbours.fill(-1);
             facets.push_back(facet);
             diameters.push_back(face->diameter());
+            {
+              const auto binary = cell->id().template to_binary<dim>();
+              FacetId    id;
+              std::copy(binary.begin(), binary.end(), id.begin());
+              id.back() = f;
+              ids_of_facets.push_back(id);
+            }
 
             // Outward orientation: the facet's normal must point away from
             // its cell.
@@ -327,6 +335,7 @@ namespace glide
               }
           }
       }
+    sort_by_cell(ids_of_facets, diameters);
     on_symmetry_plane.resize(nodes.size());
     for (unsigned int k = 0; k < nodes.size(); ++k)
       for (unsigned int c = 0; c < dim; ++c)
@@ -342,18 +351,14 @@ namespace glide
         build();
       }
     else if (!distributed)
-      gather(diameters);
+      gather(diameters, global_keys(ids_of_facets));
     else
       {
         // R15.2: this process's facets stay aside, numbered as in the
-        // whole surface (those of the lower ranks first, as gather() does);
-        // gather_near() brings each process those within its reach.
+        // whole surface; gather_near() brings each process those within
+        // its reach.
         const std::uint64_t n_own = facets.size();
-        std::uint64_t       first = 0;
-        MPI_Exscan(&n_own, &first, 1, MPI_UINT64_T, MPI_SUM, comm);
-        if (Utilities::MPI::this_mpi_process(comm) == 0)
-          first = 0;
-        pack(diameters, first, own_reals, own_integers);
+        pack(diameters, global_keys(ids_of_facets), own_reals, own_integers);
         for (const auto &node : nodes)
           own_node_dofs.insert(own_node_dofs.end(),
                                node.dofs.begin(),
@@ -373,8 +378,80 @@ namespace glide
 
   template <int dim>
   void
+  MasterSurface<dim>::sort_by_cell(std::vector<FacetId> &ids,
+                                   std::vector<double>  &diameters)
+  {
+    // The facets in the order of their cells' ids and face numbers, the
+    // nodes in the order the facets first name them: the same order on one
+    // process and on several, whatever the partition. The order of the
+    // cells a process visits is not: locally refined cells come level by
+    // level, and a partition splits them differently.
+    std::vector<unsigned int> order(facets.size());
+    for (unsigned int i = 0; i < order.size(); ++i)
+      order[i] = i;
+    std::sort(order.begin(), order.end(), [&](const auto a, const auto b) {
+      return ids[a] < ids[b];
+    });
+    std::vector<Facet>   sorted_facets;
+    std::vector<double>  sorted_diameters;
+    std::vector<FacetId> sorted_ids;
+    std::vector<Node>    sorted_nodes;
+    std::vector<int>     new_index(nodes.size(), -1);
+    for (const auto i : order)
+      {
+        Facet facet = facets[i];
+        for (auto &k : facet.nodes)
+          {
+            if (new_index[k] < 0)
+              {
+                new_index[k] = sorted_nodes.size();
+                sorted_nodes.push_back(nodes[k]);
+              }
+            k = new_index[k];
+          }
+        sorted_facets.push_back(facet);
+        sorted_diameters.push_back(diameters[i]);
+        sorted_ids.push_back(ids[i]);
+      }
+    facets    = std::move(sorted_facets);
+    nodes     = std::move(sorted_nodes);
+    diameters = std::move(sorted_diameters);
+    ids       = std::move(sorted_ids);
+  }
+
+  template <int dim>
+  std::vector<std::uint64_t>
+  MasterSurface<dim>::global_keys(const std::vector<FacetId> &ids) const
+  {
+    // Every facet's position in the order of sort_by_cell() over all
+    // processes: what one process numbers it. The ids of the whole surface
+    // pass through every process once, at set-up (5 integers per facet).
+    std::vector<unsigned int> flat;
+    for (const auto &id : ids)
+      flat.insert(flat.end(), id.begin(), id.end());
+    const auto           all = Utilities::MPI::all_gather(comm, flat);
+    std::vector<FacetId> every;
+    for (const auto &part : all)
+      for (std::size_t a = 0;
+           a + std::tuple_size<FacetId>::value <= part.size();
+           a += std::tuple_size<FacetId>::value)
+        {
+          FacetId id;
+          std::copy(part.begin() + a, part.begin() + a + id.size(), id.begin());
+          every.push_back(id);
+        }
+    std::sort(every.begin(), every.end());
+    std::vector<std::uint64_t> keys;
+    for (const auto &id : ids)
+      keys.push_back(std::lower_bound(every.begin(), every.end(), id) -
+                     every.begin());
+    return keys;
+  }
+
+  template <int dim>
+  void
   MasterSurface<dim>::pack(const std::vector<double>            &diameters,
-                           const std::uint64_t                   first_key,
+                           const std::vector<std::uint64_t>     &keys,
                            std::vector<double>                  &reals,
                            std::vector<types::global_dof_index> &integers) const
   {
@@ -383,7 +460,7 @@ namespace glide
     for (unsigned int i = 0; i < facets.size(); ++i)
       {
         reals.push_back(diameters[i]);
-        integers.push_back(first_key + i);
+        integers.push_back(keys[i]);
         for (const auto k : facets[i].nodes)
           {
             for (unsigned int d = 0; d < dim; ++d)
@@ -626,22 +703,17 @@ namespace glide
 
   template <int dim>
   void
-  MasterSurface<dim>::gather(const std::vector<double> &diameters)
+  MasterSurface<dim>::gather(const std::vector<double>        &diameters,
+                             const std::vector<std::uint64_t> &keys)
   {
-    // Every process appends the facets of all processes in the order of
-    // their ranks, which is the order of the cells of one process (p4est
-    // partitions the cells in one space-filling-curve order), so that
-    // every process holds the same surface, numbered as on one process.
+    // Every process holds the facets of all processes, numbered by their
+    // keys as on one process.
     const std::uint64_t n_own = facets.size();
-    std::uint64_t       first = 0;
-    MPI_Exscan(&n_own, &first, 1, MPI_UINT64_T, MPI_SUM, comm);
-    if (Utilities::MPI::this_mpi_process(comm) == 0)
-      first = 0;
-    owners       = Utilities::MPI::sum(n_own > 0 ? 1u : 0u, comm);
-    total_facets = Utilities::MPI::sum(n_own, comm);
+    owners                    = Utilities::MPI::sum(n_own > 0 ? 1u : 0u, comm);
+    total_facets              = Utilities::MPI::sum(n_own, comm);
     std::vector<double>                  reals;
     std::vector<types::global_dof_index> integers;
-    pack(diameters, first, reals, integers);
+    pack(diameters, keys, reals, integers);
     const auto all_reals    = Utilities::MPI::all_gather(comm, reals);
     const auto all_integers = Utilities::MPI::all_gather(comm, integers);
     std::vector<

@@ -111,11 +111,15 @@ namespace glide
       /// Neighbour facet across each side (2D: at xi = 0, xi = 1; 3D: the
       /// edges xi = 0, xi = 1, eta = 0, eta = 1), -1 at the surface boundary.
       std::array<int, 2 * (dim - 1)> neighbours;
-      /// Its number in the whole surface as one process numbers it (the
-      /// order of the cells), whatever the partition and whichever facets
-      /// a process holds.
+      /// Its number in the whole surface: its place in the order of its
+      /// cell's id and face number (sort_by_cell()), whatever the partition
+      /// and whichever facets a process holds. Ties between equally close
+      /// pieces go to the lowest number, so they are decided alike on one
+      /// process and on several.
       std::uint64_t key = 0;
     };
+    /// A facet's cell (CellId::to_binary()) and face number.
+    using FacetId = std::array<unsigned int, 5>;
     enum class PieceKind
     {
       lagrange, ///< a facet, or its part between xi_begin and xi_end (2D)
@@ -369,13 +373,22 @@ namespace glide
     /// Under MPI: replace this process's facets (of its own cells) by those
     /// of every process, with their @p diameters.
     void
-    gather(const std::vector<double> &diameters);
-    /// This process's facets with their keys, as numbers (per facet: its
+    gather(const std::vector<double>        &diameters,
+           const std::vector<std::uint64_t> &keys);
+    /// Put the facets (with their @p ids and @p diameters) in the order of
+    /// their ids, and the nodes in the order the facets first name them.
+    void
+    sort_by_cell(std::vector<FacetId> &ids, std::vector<double> &diameters);
+    /// Under MPI: the keys of this process's facets, from their @p ids and
+    /// those of every process.
+    std::vector<std::uint64_t>
+    global_keys(const std::vector<FacetId> &ids) const;
+    /// This process's facets with their @p keys, as numbers (per facet: its
     /// diameter, then per node its reference position; and its key, then
     /// per node its DoFs and symmetry flags).
     void
     pack(const std::vector<double>                    &diameters,
-         const std::uint64_t                           first_key,
+         const std::vector<std::uint64_t>             &keys,
          std::vector<double>                          &reals,
          std::vector<dealii::types::global_dof_index> &integers) const;
     /// Replace the facets by those of the packed lists @p parts, in the
