@@ -300,10 +300,13 @@ namespace glide
             facets.push_back(facet);
             diameters.push_back(face->diameter());
             {
+              FacetId id;
+              for (const auto k : facets.back().nodes)
+                for (unsigned int d = 0; d < dim; ++d)
+                  id.centre[d] += nodes[k].X[d] / facets.back().nodes.size();
               const auto binary = cell->id().template to_binary<dim>();
-              FacetId    id;
-              std::copy(binary.begin(), binary.end(), id.begin());
-              id.back() = f;
+              std::copy(binary.begin(), binary.end(), id.cell.begin());
+              id.cell.back() = f;
               ids_of_facets.push_back(id);
             }
 
@@ -335,7 +338,7 @@ namespace glide
               }
           }
       }
-    sort_by_cell(ids_of_facets, diameters);
+    sort_canonically(ids_of_facets, diameters);
     on_symmetry_plane.resize(nodes.size());
     for (unsigned int k = 0; k < nodes.size(); ++k)
       for (unsigned int c = 0; c < dim; ++c)
@@ -378,14 +381,17 @@ namespace glide
 
   template <int dim>
   void
-  MasterSurface<dim>::sort_by_cell(std::vector<FacetId> &ids,
-                                   std::vector<double>  &diameters)
+  MasterSurface<dim>::sort_canonically(std::vector<FacetId> &ids,
+                                       std::vector<double>  &diameters)
   {
-    // The facets in the order of their cells' ids and face numbers, the
-    // nodes in the order the facets first name them: the same order on one
-    // process and on several, whatever the partition. The order of the
-    // cells a process visits is not: locally refined cells come level by
-    // level, and a partition splits them differently.
+    // The facets in the order of their centres (lexicographic; facets
+    // that coincide in the order of their cells' ids and face numbers),
+    // the nodes in the order the facets first name them: one order on one
+    // process and on several, whatever the partition, the order of the
+    // bodies and the numbering of a mesh file. The order in which a
+    // process visits its cells is none of these: locally refined cells
+    // come level by level, a partition splits them differently, and the
+    // bodies' cells come in the order of the scene's list.
     std::vector<unsigned int> order(facets.size());
     for (unsigned int i = 0; i < order.size(); ++i)
       order[i] = i;
@@ -423,21 +429,31 @@ namespace glide
   std::vector<std::uint64_t>
   MasterSurface<dim>::global_keys(const std::vector<FacetId> &ids) const
   {
-    // Every facet's position in the order of sort_by_cell() over all
+    // Every facet's position in the order of sort_canonically() over all
     // processes: what one process numbers it. The ids of the whole surface
-    // pass through every process once, at set-up (5 integers per facet).
-    std::vector<unsigned int> flat;
+    // pass through every process once, at set-up (dim + 5 numbers per
+    // facet).
+    std::vector<double>       centres;
+    std::vector<unsigned int> cells;
     for (const auto &id : ids)
-      flat.insert(flat.end(), id.begin(), id.end());
-    const auto           all = Utilities::MPI::all_gather(comm, flat);
+      {
+        centres.insert(centres.end(), id.centre.begin(), id.centre.end());
+        cells.insert(cells.end(), id.cell.begin(), id.cell.end());
+      }
+    const auto all_centres = Utilities::MPI::all_gather(comm, centres);
+    const auto all_cells   = Utilities::MPI::all_gather(comm, cells);
     std::vector<FacetId> every;
-    for (const auto &part : all)
-      for (std::size_t a = 0;
-           a + std::tuple_size<FacetId>::value <= part.size();
-           a += std::tuple_size<FacetId>::value)
+    for (unsigned int r = 0; r < all_centres.size(); ++r)
+      for (std::size_t a = 0, b = 0; a < all_centres[r].size();
+           a += dim, b += std::tuple_size<decltype(FacetId::cell)>::value)
         {
           FacetId id;
-          std::copy(part.begin() + a, part.begin() + a + id.size(), id.begin());
+          std::copy(all_centres[r].begin() + a,
+                    all_centres[r].begin() + a + dim,
+                    id.centre.begin());
+          std::copy(all_cells[r].begin() + b,
+                    all_cells[r].begin() + b + id.cell.size(),
+                    id.cell.begin());
           every.push_back(id);
         }
     std::sort(every.begin(), every.end());

@@ -919,32 +919,38 @@ def case_contact_deformable_mpi_matches_serial():
     compare_with_serial("unanchored node", serial, parallel, s_out, p_out, "fit")
 
 
-def case_ties_mpi_matches_serial():
+def case_ties_decided_alike():
     """Issue 15 (R15.1): a slave node equally close to two master facets
-    takes the same one on any number of processes (run with 2, and 3).
+    takes the same one on any number of processes (run with 2, and 3) and
+    whatever the order of the bodies in the scene.
     parameters/excessive-sliding.prm: the block's corner node (0, 0) lies
     on the corners of both foundation bodies' tops, at distance 0 from a
     facet of each. Ties between equally close pieces go to the lowest facet
     number, and the numbers were those of the cells in the order a process
-    visits them, its own first: on 2 processes the node took the right
-    body's facet, which then carried a fifth of the load (small sliding:
-    contact force 0.554 against 0.460 serially; finite sliding and surface
-    to surface alike). The facets are now numbered by their cells' ids
-    (MasterSurface::sort_by_cell()). Small sliding (anchors, R11),
-    finite sliding and small-sliding surface to surface against the
-    serial run: compare_with_serial, with the per-body reactions among the
-    forces it compares."""
+    visits them, its own first and the bodies in the order of the scene's
+    list: on 2 processes, or with 'Bodies = right, left, block', the node
+    took the right body's facet, which then carried a fifth of the load
+    (small sliding: contact force 0.554 against 0.460; finite sliding and
+    surface to surface alike). The facets are now numbered in the order of
+    their centres (MasterSurface::sort_canonically()). Small sliding
+    (anchors, R11), finite sliding and small-sliding surface to surface,
+    against the serial run with the scene's order: compare_with_serial,
+    with the per-body reactions among the forces it compares."""
     scene = scene_file("excessive-sliding.prm")
     variants = [("small sliding", ()),
                 ("finite sliding", ("Contact pair slide/Sliding=finite",)),
                 ("surface to surface", ("Contact pair slide/Formulation=surface to surface",))]
     saved = ARGS.mpirun
     try:
-        for np in (2, 3):
-            ARGS.mpirun = re.sub(r"-np \d+", f"-np {np}", saved)
-            for label, extra in variants:
-                tag = label.replace(" ", "-")
-                serial, _, s_out = run(scene, "Output/Write VTU=false", *extra, name=f"{tag}-serial")
+        for label, extra in variants:
+            tag = label.replace(" ", "-")
+            serial, _, s_out = run(scene, "Output/Write VTU=false", *extra, name=f"{tag}-serial")
+            for order in ("right, left, block", "block, right, left"):
+                other, _, o_out = run(scene, "Output/Write VTU=false", *extra, f"Bodies={order}",
+                                      name=f"{tag}-{order.replace(', ', '-')}")
+                compare_with_serial(f"{label}, bodies listed {order}", serial, other, s_out, o_out, "slide")
+            for np in (2, 3):
+                ARGS.mpirun = re.sub(r"-np \d+", f"-np {np}", saved)
                 parallel, log, p_out = run(scene, "Output/Write VTU=false", *extra, name=f"{tag}-{np}", mpi=True)
                 check(f"on {np} process(es)" in log, f"{label}: ran on {np} processes")
                 compare_with_serial(f"{label}, {np} processes", serial, parallel, s_out, p_out, "slide")

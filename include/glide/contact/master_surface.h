@@ -14,6 +14,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace glide
@@ -111,15 +112,27 @@ namespace glide
       /// Neighbour facet across each side (2D: at xi = 0, xi = 1; 3D: the
       /// edges xi = 0, xi = 1, eta = 0, eta = 1), -1 at the surface boundary.
       std::array<int, 2 * (dim - 1)> neighbours;
-      /// Its number in the whole surface: its place in the order of its
-      /// cell's id and face number (sort_by_cell()), whatever the partition
-      /// and whichever facets a process holds. Ties between equally close
+      /// Its number in the whole surface: its place in the order of the
+      /// facets' centres (sort_canonically()), whatever the partition, the
+      /// order of the bodies and the mesh's numbering, and whichever facets
+      /// a process holds. Ties between equally close
       /// pieces go to the lowest number, so they are decided alike on one
       /// process and on several.
       std::uint64_t key = 0;
     };
-    /// A facet's cell (CellId::to_binary()) and face number.
-    using FacetId = std::array<unsigned int, 5>;
+    /// What orders the facets (sort_canonically()): its centre in the
+    /// reference configuration, then its cell (CellId::to_binary()) and
+    /// face number.
+    struct FacetId
+    {
+      std::array<double, dim>     centre{};
+      std::array<unsigned int, 5> cell{};
+      bool
+      operator<(const FacetId &other) const
+      {
+        return std::tie(centre, cell) < std::tie(other.centre, other.cell);
+      }
+    };
     enum class PieceKind
     {
       lagrange, ///< a facet, or its part between xi_begin and xi_end (2D)
@@ -378,7 +391,7 @@ namespace glide
     /// Put the facets (with their @p ids and @p diameters) in the order of
     /// their ids, and the nodes in the order the facets first name them.
     void
-    sort_by_cell(std::vector<FacetId> &ids, std::vector<double> &diameters);
+    sort_canonically(std::vector<FacetId> &ids, std::vector<double> &diameters);
     /// Under MPI: the keys of this process's facets, from their @p ids and
     /// those of every process.
     std::vector<std::uint64_t>
