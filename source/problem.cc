@@ -136,7 +136,7 @@ namespace glide
     contact.set_scaling(residual_scale, solution_scale);
 
     NonlinearSolverParameters newton_parameters = scene.nonlinear_solver;
-    newton_parameters.round_off_floor           = elasticity.round_off_floor();
+    newton_parameters.round_off_floor           = round_off_floor();
     newton_parameters.linear_problem =
       !contact.active() && !scene.geometric_nonlinearity;
     newton = std::make_unique<NonlinearSolver>(newton_parameters, comm);
@@ -214,6 +214,13 @@ namespace glide
       [&](DynamicSparsityPattern &dsp) { contact.add_sparsity(dsp); },
       contact.ghost_dofs());
     jacobian.reinit(elasticity.matrix_pattern());
+  }
+
+  template <int dim>
+  double
+  Problem<dim>::round_off_floor() const
+  {
+    return std::max(elasticity.round_off_floor(), contact.round_off_floor());
   }
 
   template <int dim>
@@ -668,8 +675,13 @@ namespace glide
                 << ": KINSOL could not reduce the residual further, and "
                 << scientific(result.residual_norm)
                 << " is within the round-off floor "
-                << scientific(elasticity.round_off_floor()) << " that "
-                << (elasticity.round_off_floor_from_loads() ?
+                << scientific(round_off_floor()) << " that "
+                << (round_off_floor() > elasticity.round_off_floor() ?
+                      "the contact gaps set (10 x machine epsilon x the "
+                      "largest slave coordinate, over the slave facet "
+                      "size: a contact zone far from the origin against "
+                      "its facets)" :
+                    elasticity.round_off_floor_from_loads() ?
                       "the loads set (10 x machine epsilon x the largest "
                       "nodal load over the softest Young's modulus and the "
                       "mean face area)" :

@@ -68,6 +68,11 @@ namespace glide
     /// The callbacks through which KINSOL sees the problem.
     void
     setup_callbacks();
+    /// The scaled residual below which round-off leaves nothing to
+    /// reduce: the larger of the bodies' (Elasticity::round_off_floor())
+    /// and the contact gaps' (Contact::round_off_floor()).
+    double
+    round_off_floor() const;
     /// Rebuild the sparsity pattern and the Jacobian (sliding contact).
     void
     rebuild_pattern();

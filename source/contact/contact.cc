@@ -1011,6 +1011,29 @@ namespace glide
   }
 
   template <int dim>
+  double
+  Contact<dim>::round_off_floor() const
+  {
+    // Row scale (set_scaling()) x c x 10 eps |X|: a gap computed from
+    // positions of magnitude |X| (reference, plus displacements of the
+    // scene's size at most) to a few epsilon of them.
+    double floor = 0.;
+    for (const auto &pair : pairs)
+      for (const auto &node : pair.nodes)
+        {
+          double x = elasticity.length_scale();
+          for (unsigned int d = 0; d < dim; ++d)
+            x = std::max(x, std::abs(node.X[d]));
+          floor =
+            std::max(floor,
+                     10. * std::numeric_limits<double>::epsilon() * x * node.c *
+                       elasticity.residual_scale() *
+                       elasticity.softest_youngs_modulus() / pair.modulus);
+        }
+    return Utilities::MPI::max(floor, comm);
+  }
+
+  template <int dim>
   void
   Contact<dim>::set_scaling(VectorType &residual_scale,
                             VectorType &solution_scale) const

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -1387,6 +1388,13 @@ namespace glide
       xi[b] = 0.5 * (piece.lower[b] + piece.upper[b]);
     std::array<bool, dim - 1> fixed{};
     bool                      converged = false;
+    // The coordinates' magnitude, for the round-off floor below.
+    double scale = 0.;
+    for (unsigned int d = 0; d < dim; ++d)
+      scale = std::max(scale, std::abs(xs[d]));
+    for (const auto &v : piece.vnodes)
+      for (unsigned int d = 0; d < dim; ++d)
+        scale = std::max(scale, std::abs(x[v.first][d]));
     for (unsigned int it = 0; it < 50 && !converged; ++it)
       {
         std::array<Fad, dim - 1> xf, R;
@@ -1429,8 +1437,20 @@ namespace glide
             xi[b]  = v;
           }
         // The parameters live in [0, 1]: 1e-10 is far below any geometric
-        // tolerance, and Newton converges quadratically past it.
-        converged = change < 1e-10;
+        // tolerance, and Newton converges quadratically past it. Unless the
+        // coordinates are large against the piece: r carries the rounding
+        // of xs - y(xi), about eps |x| |a| (a = dy/dxi, J ~ |a|^2), so xi
+        // is resolved to about eps |x| / |a| and no better. A scene placed
+        // 1e4 from the origin with facets of 4e-3 has 5e-10 there: Newton
+        // never met 1e-10, the projections failed, their nodes opened, and
+        // the Hertz scene did not converge (scene.far_from_the_origin).
+        double floor = 0.;
+        for (unsigned int b = 0; b < dim - 1; ++b)
+          if (J[b][b] != 0.)
+            floor = std::max(floor,
+                             64. * std::numeric_limits<double>::epsilon() *
+                               scale / std::sqrt(std::abs(J[b][b])));
+        converged = change < std::max(1e-10, floor);
       }
     if (!converged)
       {

@@ -958,6 +958,75 @@ def case_ties_decided_alike():
         ARGS.mpirun = saved
 
 
+def shifted_hertz_2d(dx, dy):
+    """--set lines that move parameters/hertz-2d-elastic.prm by (dx, dy),
+    on a coarser mesh (15 618 DoFs)."""
+    f = lambda v: f"{v:.17g}"
+    return ["Body cylinder/Refinement/Local refinements=6", "Body block/Refinement/Local refinements=4",
+            f"Body cylinder/Round shapes/Center={f(dx)}, {f(dy + 1)}",
+            f"Body cylinder/Refinement/Refinement point={f(dx)}, {f(dy)}",
+            f"Body block/Block/Lower corner={f(dx - 2)}, {f(dy - 2)}",
+            f"Body block/Block/Upper corner={f(dx + 2)}, {f(dy)}",
+            f"Body block/Refinement/Refinement point={f(dx)}, {f(dy)}",
+            f"Node set top_center/Points={f(dx)}, {f(dy + 1)}"]
+
+
+def case_far_from_the_origin():
+    """R16.2: a scene moved far from the origin gives the answer it gives
+    at the origin. parameters/hertz-2d-elastic.prm (cylinder R = 1, block
+    facets 0.0156 at the contact) moved by 1e4 and by 1e5 in x and in y,
+    every formulation and both roles: converged without cut-back, at most 1
+    more Newton iteration in any step than at the origin (where round-off
+    stops the solve, one iterate shows that the residual no longer falls;
+    NonlinearSolver::solve), the same contact
+    force (1e-8) and nodal CPRESS (1e-6 of the peak, nodes matched by
+    their reference position less the shift). Before 2026-12-05 finite
+    sliding failed there: the closest-point Newton iteration
+    (MasterSurface::project_on) asked for 1e-10 in the facet parameter,
+    which coordinates of 1e4 resolve to 5e-10 only; the projections
+    failed, the slave nodes took clamped points of neighbouring pieces, and
+    the run cut back to the limit (f = 0.2, 1e4 in x) or stalled. Moved by
+    1e5 normal to the contact, the gaps themselves carry 1.5e-11 of
+    round-off: the contact rows' round-off floor (Contact::round_off_floor)
+    lets the solve end there, and the log says so."""
+    cases = [("node to surface, cylinder slave", []),
+             ("node to surface, block slave", ["Contact pair hertz/Slave=block.top",
+                                               "Contact pair hertz/Master=cylinder.curved"]),
+             ("node to surface, f = 0", ["Contact pair hertz/Smoothing fraction=0"]),
+             ("small sliding", ["Contact pair hertz/Sliding=small"]),
+             ("mortar", ["Contact pair hertz/Slave=block.top", "Contact pair hertz/Master=cylinder.curved",
+                         "Contact pair hertz/Formulation=mortar"])]
+    for label, extra in cases:
+        sets = ["Output/Write VTU=false"] + extra
+        tag = re.sub(r"[^a-z0-9]+", "-", label)
+        rows0, _, out0 = run(scene_file("hertz-2d-elastic.prm"), *sets, *shifted_hertz_2d(0., 0.), name=f"{tag}-0")
+        pair = "hertz"
+        nodes0 = contact_nodes(out0, pair)
+        p_max = max(n["CPRESS"] for n in nodes0)
+        for dx, dy in ((1e4, 0.), (0., 1e4), (1e5, 0.), (0., 1e5)):
+            what = f"{label}, moved by ({dx:g}, {dy:g})"
+            rows, log, out = run(scene_file("hertz-2d-elastic.prm"), *sets, *shifted_hertz_2d(dx, dy),
+                                 name=f"{tag}-{dx:g}-{dy:g}")
+            its0 = [int(r["kinsol_iterations"]) for r in rows0]
+            its = [int(r["kinsol_iterations"]) for r in rows]
+            check(len(rows) == len(rows0) and rows[-1]["cut_backs"] == 0, f"{what}: no cut-back")
+            check(all(b <= a + 1 for a, b in zip(its0, its)),
+                  f"{what}: Newton iterations per step {its} (at the origin {its0})")
+            close(rows[-1][f"contact_{pair}_force_y"], rows0[-1][f"contact_{pair}_force_y"], 1e-8,
+                  f"{what}: contact force")
+            # Matched by reference position less the shift (the CSV's 12
+            # digits leave 1e-7 at 1e5).
+            nodes = sorted(contact_nodes(out, pair), key=lambda n: (n["X"] - dx, n["Y"] - dy))
+            ref = sorted(nodes0, key=lambda n: (n["X"], n["Y"]))
+            check(len(nodes) == len(ref) and
+                  all(abs(a["X"] - dx - b["X"]) + abs(a["Y"] - dy - b["Y"]) < 1e-5 for a, b in zip(nodes, ref)),
+                  f"{what}: the same slave nodes")
+            dp = max(abs(a["CPRESS"] - b["CPRESS"]) for a, b in zip(nodes, ref)) / p_max
+            check(dp <= 1e-6, f"{what}: nodal CPRESS as at the origin (largest difference {dp:.1e} of the peak)")
+            if "round-off floor" in log and "contact gaps" in log:
+                print(f"measured: {what}: accepted at the contact gaps' round-off floor")
+
+
 def case_ironing_mpi_matches_serial():
     """Issue 15: sliding across the partition. The die of
     study/scenes/ironing-2d.prm (slave, refined twice) pressed 0.7 into the

@@ -84,6 +84,14 @@ namespace glide
       return read_ghosts;
     }
 
+    /// The scaled residual that round-off in the gaps alone leaves in the
+    /// contact rows (collective): a gap is the difference of positions, so
+    /// it carries a few machine epsilon times their magnitude, and a
+    /// closed node's row is c g. Large where the contact zone lies far
+    /// from the origin against its facets; see Elasticity::round_off_floor().
+    double
+    round_off_floor() const;
+
     /// Couplings of contact terms, for the sparsity pattern: each slave
     /// node with the master nodes it can reach by sliding about one master
     /// facet from where it is now.
