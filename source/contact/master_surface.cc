@@ -1440,10 +1440,11 @@ namespace glide
         // tolerance, and Newton converges quadratically past it. Unless the
         // coordinates are large against the piece: r carries the rounding
         // of xs - y(xi), about eps |x| |a| (a = dy/dxi, J ~ |a|^2), so xi
-        // is resolved to about eps |x| / |a| and no better. A scene placed
-        // 1e4 from the origin with facets of 4e-3 has 5e-10 there: Newton
-        // never met 1e-10, the projections failed, their nodes opened, and
-        // the Hertz scene did not converge (scene.far_from_the_origin).
+        // is resolved to about eps |x| / |a| and no better. In a scene 1e4
+        // from the origin with pieces 6e-3 long, that is above 1e-10:
+        // Newton never met it, the projections failed, slave nodes took
+        // clamped points of neighbouring pieces, and the Hertz scene cut
+        // back to the limit (scene.far_from_the_origin).
         double floor = 0.;
         for (unsigned int b = 0; b < dim - 1; ++b)
           if (J[b][b] != 0.)
