@@ -353,7 +353,6 @@ namespace glide
   Contact<dim>::setup(const types::global_dof_index first_multiplier)
   {
     max_youngs_modulus = elasticity.youngs_modulus_scale();
-    clearance          = 1e-10 * elasticity.length_scale();
     pairs.clear();
     pairs.reserve(scene.contact_pairs.size());
     for (const auto &p : scene.contact_pairs)
@@ -505,7 +504,7 @@ namespace glide
                                  }};
         pair.formulation =
           make_formulation<dim>(context, std::move(master), std::move(surface));
-        pair.enforcement = make_enforcement<dim>(p, clearance);
+        pair.enforcement = make_enforcement<dim>(p);
         pairs.push_back(std::move(pair));
         // The formulation keeps a reference to the nodes: set up in place.
         pairs.back().formulation->setup(pairs.back().nodes);
@@ -1234,7 +1233,7 @@ namespace glide
         for (unsigned int i = 0; i < s.size(); ++i)
           {
             const auto &node = pair.nodes[i];
-            if (s[i].found() && s[i].gap - clearance <= 0.01 * node.size)
+            if (s[i].found() && s[i].gap <= 0.01 * node.size)
               {
                 U_out[node.multiplier] =
                   pair.enforcement->closing_multiplier(node, s[i].gap);
@@ -1262,7 +1261,7 @@ namespace glide
         for (unsigned int i = 0; i < s.size(); ++i)
           {
             const auto  &node  = pair.nodes[i];
-            const double depth = clearance - s[i].gap;
+            const double depth = -s[i].gap;
             if (!s[i].found() || node.size <= 0. || !(depth > node.size))
               continue;
             ++n;

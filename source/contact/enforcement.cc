@@ -112,7 +112,7 @@ namespace glide
     f.lambda = U[node.multiplier];
     // Active where lambda - c g >= 0: then C = c g (closed, g -> 0);
     // otherwise C = lambda (open, lambda -> 0).
-    f.closed = s.found() && f.lambda - node.c * (s.gap - clearance) >= 0.;
+    f.closed = s.found() && f.lambda - node.c * s.gap >= 0.;
     return f;
   }
 
@@ -135,7 +135,7 @@ namespace glide
                          symmetrized,
                          stabilization,
                          node.c,
-                         node.c * (l.gap - clearance),
+                         node.c * l.gap,
                          0.,
                          idx,
                          rhs,
@@ -202,16 +202,17 @@ namespace glide
   HardEnforcement<dim>::closing_multiplier(const SlaveNode<dim> &node,
                                            const double          gap) const
   {
-    return node.c * std::max(0., gap - clearance);
+    // lambda - c g >= 0: lambda = c g, 1e-8 above it, so that round-off in
+    // force() cannot put the node on the open branch (as for penalty).
+    return (1. + 1e-8) * node.c * std::max(0., gap);
   }
 
   template <int dim>
   std::unique_ptr<ContactEnforcement<dim>>
-  make_enforcement(const ContactPairParameters &parameters,
-                   const double                 clearance)
+  make_enforcement(const ContactPairParameters &parameters)
   {
     if (parameters.enforcement == Enforcement::hard)
-      return std::make_unique<HardEnforcement<dim>>(clearance);
+      return std::make_unique<HardEnforcement<dim>>();
     return std::make_unique<PenaltyEnforcement<dim>>();
   }
 
@@ -220,7 +221,7 @@ namespace glide
   template class PenaltyEnforcement<2>;
   template class PenaltyEnforcement<3>;
   template std::unique_ptr<ContactEnforcement<2>>
-  make_enforcement<2>(const ContactPairParameters &, const double);
+  make_enforcement<2>(const ContactPairParameters &);
   template std::unique_ptr<ContactEnforcement<3>>
-  make_enforcement<3>(const ContactPairParameters &, const double);
+  make_enforcement<3>(const ContactPairParameters &);
 } // namespace glide

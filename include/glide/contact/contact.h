@@ -196,8 +196,8 @@ namespace glide
      * The initial active set of a load step (hard contact): for a pair that
      * carries no force at the step's initial guess @p U (every multiplier
      * zero: its first contact), close the slave
-     * nodes that touch the master already, those with g - g_0 <= 0.01 h (h
-     * the node's facet size), by setting their multiplier to c (g - g_0),
+     * nodes that touch the master already, those with g <= 0.01 h (h
+     * the node's facet size), by setting their multiplier just above c g,
      * where the complementarity function switches to its closed branch.
      * A body held only by contact (a cylinder pressed onto a block by a
      * force) otherwise starts with every node open wherever no node sits
@@ -437,10 +437,5 @@ namespace glide
     mutable VectorType              ghosted;
     dealii::types::global_dof_index total_multipliers  = 0;
     double                          max_youngs_modulus = 0.;
-    /// Hard contact holds closed nodes at this gap, 1e-10 times the scene
-    /// size, instead of exactly 0: a node that touches the master up to
-    /// round-off (a body resting on a point) then counts as closed instead
-    /// of leaving the body floating with a singular stiffness matrix.
-    double clearance = 0.;
   };
 } // namespace glide
