@@ -1067,6 +1067,7 @@ namespace glide
         // an anchor (small sliding), nodes held on one facet, constraints
         // that fell back to a simpler formulation.
         unsigned int   active = 0, failed = 0, beyond = 0, unanchored = 0;
+        unsigned int   incomplete   = 0;
         double         normal_force = 0, penetration = 0;
         Tensor<1, dim> force;
         const auto     s = constraints(pair, U);
@@ -1075,6 +1076,7 @@ namespace glide
           {
             active += f[i].closed ? 1 : 0;
             failed += s[i].outcome == Outcome::failed ? 1 : 0;
+            incomplete += s[i].found() && s[i].projection.incomplete ? 1 : 0;
             beyond += s[i].outcome == Outcome::beyond_end ? 1 : 0;
             unanchored += s[i].outcome == Outcome::unanchored ? 1 : 0;
             normal_force += f[i].lambda;
@@ -1131,6 +1133,7 @@ namespace glide
                            std::to_string(Utilities::MPI::sum(n, comm)));
         };
         count("projection_failed", failed);
+        count("projection_incomplete", incomplete);
         count("beyond_end", beyond);
         count("unanchored", unanchored);
         count("held", pair.formulation->n_held());

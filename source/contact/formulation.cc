@@ -183,6 +183,22 @@ namespace glide
                      "': " + what + " did not converge for ",
                    " slave node(s), which count as open in this step (node "
                    "positions in the reference configuration)");
+    std::vector<std::string> incomplete;
+    for (unsigned int i = 0; i < s.size(); ++i)
+      if (s[i].found() && s[i].projection.incomplete)
+        {
+          std::ostringstream text;
+          text << "(" << (*nodes)[i].X << ")";
+          incomplete.push_back(text.str());
+        }
+    context.report(incomplete,
+                   "warning: contact pair '" + context.parameters.name +
+                     "': " + what +
+                     " did not converge on some of the master pieces near ",
+                   " slave node(s); they are in contact with the closest "
+                   "point found on the others, and a closer one may have "
+                   "been missed (node positions in the reference "
+                   "configuration)");
   }
 
   template <int dim>

@@ -144,6 +144,52 @@ namespace glide
         }
     }
 
+    /// The step of the closest-point iteration on the free coordinates.
+    /// Newton on R = 0 finds any stationary point of the distance, its
+    /// maxima too: where the piece curves more tightly than the distance
+    /// to the point (the point beyond its centre of curvature, as a
+    /// smoothed master's transition curves are seen from inside the
+    /// master), J = dR/dxi is not negative definite, the Newton steps went
+    /// uphill, and the iteration went back and forth between the piece's
+    /// ends until it gave up: near a smoothed circle, a fifth of the points
+    /// had such a candidate piece (unit.MasterSurface.
+    /// ClosestPointIterationConvergesOnEveryPiece). There the distance
+    /// falls along R (in 2D R = -d(|x_s - y|^2 / 2)/dxi exactly, in 3D up to
+    /// the blended normal), which leads to the piece's side: the step goes
+    /// that way, by at most the damping's half range per iteration.
+    template <std::size_t n>
+    void
+    direction(const std::array<std::array<double, n>, n> &J,
+              const std::array<double, n>                &R,
+              const std::array<bool, n>                  &fixed,
+              std::array<double, n>                      &d)
+    {
+      bool descent = false;
+      if constexpr (n == 1)
+        descent = !fixed[0] && !(J[0][0] < 0.);
+      else
+        {
+          if (!fixed[0] && !fixed[1])
+            {
+              const double off = 0.5 * (J[0][1] + J[1][0]);
+              descent = !(J[0][0] < 0. && J[0][0] * J[1][1] - off * off > 0.);
+            }
+          else
+            for (unsigned int b = 0; b < 2; ++b)
+              if (!fixed[b])
+                descent = !(J[b][b] < 0.);
+        }
+      if (!descent && newton_step(J, R, fixed, d))
+        return;
+      double norm = 0.;
+      for (std::size_t b = 0; b < n; ++b)
+        if (!fixed[b])
+          norm += R[b] * R[b];
+      norm = std::sqrt(norm);
+      for (std::size_t b = 0; b < n; ++b)
+        d[b] = (fixed[b] || norm == 0.) ? 0. : R[b] / norm;
+    }
+
     /// The parts of a Linearization that linearize() and
     /// linearize_at_vertex() share: the DoFs (slave node, then the master
     /// nodes @p local), gap, normal and gap gradient from the automatic
@@ -1412,8 +1458,7 @@ namespace glide
         // Projected Newton: a coordinate at its bound whose step points out
         // stays there.
         fixed.fill(false);
-        if (!newton_step(J, r, fixed, step))
-          return result;
+        direction(J, r, fixed, step);
         for (unsigned int pass = 0; pass < dim - 1; ++pass)
           {
             bool more = false;
@@ -1423,8 +1468,7 @@ namespace glide
                 fixed[b] = more = true;
             if (!more)
               break;
-            if (!newton_step(J, r, fixed, step))
-              return result;
+            direction(J, r, fixed, step);
           }
         double change = 0;
         for (unsigned int b = 0; b < dim - 1; ++b)
@@ -1659,7 +1703,10 @@ namespace glide
         clamped.emplace_back(p, beyond_end(p));
       }
     if (best.found)
-      return best;
+      {
+        best.incomplete = any_failed;
+        return best;
+      }
     // The closest point, and of the pieces there the largest |g| (with
     // more than two pieces at a 3D node: the largest positive gap if there
     // is one, the point is outside; else the most negative); if the point
@@ -1687,9 +1734,8 @@ namespace glide
         }
     if (beyond_end)
       best_vertex.found = false;
-    if (best.found)
-      return best;
-    best_vertex.failed = !best_vertex.found && any_failed;
+    best_vertex.failed     = !best_vertex.found && any_failed;
+    best_vertex.incomplete = best_vertex.found && any_failed;
     return best_vertex;
   }
 

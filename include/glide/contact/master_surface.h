@@ -164,11 +164,16 @@ namespace glide
       /// found: beyond the end of the master (failed false), or because
       /// the closest-point iteration did not converge on a candidate piece
       /// (failed true). Contact counts each per step (R16.3).
-      bool         found  = false;
-      bool         failed = false;
-      bool         vertex = false; ///< closest point on an edge/node
-      unsigned int piece  = 0;
-      Xi           xi     = {};
+      bool found  = false;
+      bool failed = false;
+      /// Found, but the closest-point iteration did not converge on
+      /// another candidate piece near the point, which may hold a closer
+      /// point than the one found (R16.3: counted and named like failed
+      /// projections, `contact_<pair>_projection_incomplete`).
+      bool         incomplete = false;
+      bool         vertex     = false; ///< closest point on an edge/node
+      unsigned int piece      = 0;
+      Xi           xi         = {};
       std::array<bool, dim - 1> clamped = {};
       double                    gap     = 0.;
       dealii::Tensor<1, dim>    normal;
