@@ -123,8 +123,10 @@ namespace glide
     ActiveSetMonitor<dim>            monitor;
     /// Scaled residuals of the running solve: at its first iterate and at
     /// the last one reported (the Jacobian stabilization's scale).
-    double first_residual = 0.;
-    double last_residual  = 0.;
+    double       first_residual    = 0.;
+    double       last_residual     = 0.;
+    double       previous_residual = 0.; ///< the iterate's before the last
+    unsigned int last_iteration    = 0;
     /// Whether the last Jacobian went to the direct solver although AMG
     /// was chosen (LinearSolver::fallback_reason()): the log notes changes.
     bool                                direct_fallback = false;

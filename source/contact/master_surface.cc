@@ -1434,6 +1434,13 @@ namespace glide
       xi[b] = 0.5 * (piece.lower[b] + piece.upper[b]);
     std::array<bool, dim - 1> fixed{};
     bool                      converged = false;
+    // Damping: at most half the parameter range per iteration, halved for
+    // a coordinate each time its step turns back. Newton went back and
+    // forth between two points for ever where the residual is steeper
+    // between them than at either (a 3D piece at the edge of a sphere's
+    // octant, seen from a block corner outside it: steps of +-0.42).
+    std::array<double, dim - 1> limit, previous{};
+    limit.fill(0.5);
     // The coordinates' magnitude, for the round-off floor below.
     double scale = 0.;
     for (unsigned int d = 0; d < dim; ++d)
@@ -1473,8 +1480,10 @@ namespace glide
         double change = 0;
         for (unsigned int b = 0; b < dim - 1; ++b)
           {
-            // Damped: at most half the parameter range per iteration.
-            const double d = std::max(-0.5, std::min(0.5, step[b]));
+            if (step[b] * previous[b] < 0.)
+              limit[b] *= 0.5;
+            const double d = std::max(-limit[b], std::min(limit[b], step[b]));
+            previous[b]    = d;
             const double v =
               std::max(piece.lower[b], std::min(piece.upper[b], xi[b] + d));
             change = std::max(change, std::abs(v - xi[b]));

@@ -2606,7 +2606,7 @@ def case_axisymmetric_master_on_the_axis(*extra):
     bounds were set on; the scene's is finer since 2026-12-05): an elastic sphere as the master, ending on the
     axis, pressed into an elastic block. Converges without cut-back in at
     most 6 iterations per step; the block's support balances the contact
-    force; the nodal pressure next to the axis is within 5 % of Hertz's p0
+    force (to 1e-7, what the Newton tolerance allows); the nodal pressure next to the axis is within 5 % of Hertz's p0
     for the measured force (1/E* = 2 (1 - nu^2)/E). The pressure at the
     axis node itself is printed (measured 0.38 p0: a known deviation of
     this case, documented in doc/theory/node-to-surface.md)."""
@@ -2616,7 +2616,12 @@ def case_axisymmetric_master_on_the_axis(*extra):
     for r in rows:
         check(r["cut_backs"] == 0, "no cut-back")
         check(r["kinsol_iterations"] <= 6, f"{int(r['kinsol_iterations'])} iterations at t={r['load_factor']}")
-        close(r["reaction_ground_y"], -r["contact_hertz_force_y"], 1e-9, f"balance at t={r['load_factor']}")
+        # To what the Newton tolerance allows: each scaled residual entry
+        # below 1e-10, and the imbalance a sum of the block's entries near
+        # the contact (some hundreds): measured 2e-9 where the first step
+        # stopped at a scaled residual of 6.3e-11, round-off where Newton
+        # went one iteration further.
+        close(r["reaction_ground_y"], -r["contact_hertz_force_y"], 1e-7, f"balance at t={r['load_factor']}")
     F = rows[-1]["reaction_ground_y"]
     e_star = 1 / (2 * (1 - 0.3 ** 2))
     a = (3 * F / (4 * e_star)) ** (1 / 3)
