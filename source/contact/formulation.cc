@@ -170,30 +170,30 @@ namespace glide
   Formulation<dim>::report_failed(const std::vector<Constraint<dim>> &s,
                                   const std::string &what) const
   {
-    std::vector<std::string> failed;
-    for (unsigned int i = 0; i < s.size(); ++i)
-      if (s[i].outcome == Outcome::failed)
-        {
-          std::ostringstream text;
-          text << "(" << (*nodes)[i].X << ")";
-          failed.push_back(text.str());
-        }
-    context.report(failed,
-                   "warning: contact pair '" + context.parameters.name +
-                     "': " + what + " did not converge for ",
+    // The reference positions of the constraints that @p pick selects.
+    const auto positions = [&](const auto &pick) {
+      std::vector<std::string> list;
+      for (unsigned int i = 0; i < s.size(); ++i)
+        if (pick(s[i]))
+          {
+            std::ostringstream text;
+            text << "(" << (*nodes)[i].X << ")";
+            list.push_back(text.str());
+          }
+      return list;
+    };
+    const std::string pair =
+      "warning: contact pair '" + context.parameters.name + "': " + what;
+    context.report(positions([](const Constraint<dim> &c) {
+                     return c.outcome == Outcome::failed;
+                   }),
+                   pair + " did not converge for ",
                    " slave node(s), which count as open in this step (node "
                    "positions in the reference configuration)");
-    std::vector<std::string> incomplete;
-    for (unsigned int i = 0; i < s.size(); ++i)
-      if (s[i].found() && s[i].projection.incomplete)
-        {
-          std::ostringstream text;
-          text << "(" << (*nodes)[i].X << ")";
-          incomplete.push_back(text.str());
-        }
-    context.report(incomplete,
-                   "warning: contact pair '" + context.parameters.name +
-                     "': " + what +
+    context.report(positions([](const Constraint<dim> &c) {
+                     return c.found() && c.projection.incomplete;
+                   }),
+                   pair +
                      " did not converge on some of the master pieces near ",
                    " slave node(s); they are in contact with the closest "
                    "point found on the others, and a closer one may have "

@@ -1726,6 +1726,7 @@ def case_hertz_2d_faceted_master():
         check(r["kinsol_iterations"] <= 20, f"{int(r['kinsol_iterations'])} iterations at t={r['load_factor']}")
         close(r["reaction_ground_y"], r["contact_hertz_force_y"], 1e-9, f"balance at t={r['load_factor']}")
         check(r["contact_hertz_projection_failed"] == 0, "no failed projection")
+        check(r["contact_hertz_projection_incomplete"] == 0, "no incomplete projection")
         check(r["contact_hertz_max_penetration"] <= 1e-12, "no penetration")
     held = [float(x) for x in re.findall(r"held on one master facet.*?at most ([0-9.e+-]+) from the free", log)]
     check(len(held) >= 1, "the log names held nodes")
@@ -2060,8 +2061,9 @@ def case_robustness_faceted():
             continue
         print(f"measured: {what}: iterations {r['iterations']}, cut-backs {r['cut_backs']}")
         close(abs(r["force"]), r["P"], 1e-8, f"{what}: contact force = P")
-        check(all(float(row["contact_hertz_projection_failed"]) == 0 for row in r["rows"]),
-              f"{what}: no failed projection")
+        check(all(float(row["contact_hertz_projection_failed"]) == 0 and
+                  float(row["contact_hertz_projection_incomplete"]) == 0 for row in r["rows"]),
+              f"{what}: no failed or incomplete projection")
         its = r["iterations"]
         check(r["cut_backs"] == 0, f"{what}: no cut-back")
         check(max(its) <= 10, f"{what}: at most 10 iterations per step ({max(its)})")

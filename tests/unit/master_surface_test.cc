@@ -968,17 +968,47 @@ TEST(MasterSurface, CoveringBoxesHoldEveryPointAndNotTheGapBetweenClusters)
   EXPECT_TRUE(one[0].point_inside(Point<3>(1.5, 1.5, 3.5)));
 }
 
+namespace
+{
+  /// Projects @p points onto the curved surface of the ball of
+  /// ball_on_block(dim, f, degree) and expects no failed and no incomplete
+  /// projection.
+  template <int dim>
+  void
+  expect_every_projection_complete(const unsigned int             degree,
+                                   const double                   f,
+                                   const std::vector<Point<dim>> &points)
+  {
+    const std::string tag = std::to_string(dim) + "D Q" +
+                            std::to_string(degree) +
+                            " f = " + std::to_string(f);
+    Fixture<dim> s(ball_on_block(dim, f, degree, "hard"),
+                   "converges" + std::to_string(dim) + std::to_string(degree) +
+                     std::to_string(int(100 * f)) + ".prm");
+    const auto   ball   = master_of<dim>(s, "ball.curved", f);
+    unsigned int failed = 0, incomplete = 0;
+    for (const auto &xs : points)
+      {
+        const auto p = ball->project(xs, 3.);
+        failed += p.failed ? 1 : 0;
+        incomplete += p.incomplete ? 1 : 0;
+      }
+    EXPECT_EQ(failed, 0u) << tag << ", of " << points.size() << " points";
+    EXPECT_EQ(incomplete, 0u) << tag << ", of " << points.size() << " points";
+  }
+} // namespace
+
 // R16.3: the closest-point iteration converges on every candidate piece,
 // so that no projection is failed or incomplete (a closer point missed on
 // a piece where it gave up). It used to go back and forth between a
 // piece's ends where the piece curves more tightly than the distance to
 // the point (Newton on the stationarity condition heads for the distance's
 // maximum there): a smoothed ball's transition curves seen from inside
-// it. Measured before the fix on this sweep (2D, 0.05 <= r <= 1.3): 25103
-// of 136240 points incomplete with f = 0.2 (one on the surface itself),
-// 219 failed with f = 0.45, 11 failed with quadratic facets and f = 0; in
-// 3D, 3199 incomplete (f = 0.2) and 685 failed (quadratic, f = 0.2); in
-// hertz-3d-elastic.prm three block corners outside the sphere's octant
+// it. Measured before the fix on a finer sweep of the same region (2D,
+// 0.05 <= r <= 1.3, 136240 points): 25103 incomplete with f = 0.2 (one on the
+// surface itself), 219 failed with f = 0.45, 11 failed with quadratic facets
+// and f = 0; in 3D, 3199 incomplete (f = 0.2) and 685 failed (quadratic, f =
+// 0.2); in hertz-3d-elastic.prm three block corners outside the sphere's octant
 // had a candidate piece on which Newton went back and forth between two
 // points (steps of +-0.42), now damped where a step turns back. 3D points
 // deeper than 0.2 (a fifth of the radius) inside the ball are not
@@ -988,52 +1018,23 @@ TEST(MasterSurface, CoveringBoxesHoldEveryPointAndNotTheGapBetweenClusters)
 // 789 of 64512 down to the centre; none for the other three masters).
 TEST(MasterSurface, ClosestPointIterationConvergesOnEveryPiece)
 {
+  // 2D: around the ball's centre (0.5, 1.95), radius 1, from 0.05 to 1.3.
+  std::vector<Point<2>> plane;
+  for (double r = 0.05; r < 1.3; r += 0.01)
+    for (double phi = -numbers::PI; phi < 0.; phi += 0.01)
+      plane.emplace_back(0.5 + r * std::cos(phi), 1.95 + r * std::sin(phi));
   for (const unsigned int degree : {1u, 2u})
     for (const double f : {0., 0.2, 0.45})
-      {
-        Fixture<2>   s(ball_on_block(2, f, degree, "hard"),
-                     "converges" + std::to_string(degree) +
-                       std::to_string(int(100 * f)) + ".prm");
-        const auto   ball = master_of<2>(s, "ball.curved", f);
-        unsigned int n = 0, failed = 0, incomplete = 0;
-        for (double r = 0.05; r < 1.3; r += 0.01)
-          for (double phi = -numbers::PI; phi < 0.; phi += 0.01)
-            {
-              const Point<2> xs(0.5 + r * std::cos(phi),
-                                1.95 + r * std::sin(phi));
-              const auto     p = ball->project(xs, 3.);
-              ++n;
-              failed += p.failed ? 1 : 0;
-              incomplete += p.incomplete ? 1 : 0;
-            }
-        EXPECT_EQ(failed, 0u)
-          << "2D Q" << degree << " f = " << f << ", of " << n << " points";
-        EXPECT_EQ(incomplete, 0u)
-          << "2D Q" << degree << " f = " << f << ", of " << n << " points";
-      }
+      expect_every_projection_complete<2>(degree, f, plane);
+  // 3D: around the octant's centre (0.05, 1.9, 0.05), from 0.8 to 1.3.
+  std::vector<Point<3>> space;
+  for (double r = 0.8; r < 1.3; r += 0.02)
+    for (double a = 0.; a < 0.5 * numbers::PI; a += 0.05)
+      for (double b = 0.; b < 0.5 * numbers::PI; b += 0.05)
+        space.emplace_back(0.05 + r * std::sin(a) * std::cos(b),
+                           1.9 - r * std::cos(a),
+                           0.05 + r * std::sin(a) * std::sin(b));
   for (const unsigned int degree : {1u, 2u})
     for (const double f : {0., 0.2})
-      {
-        Fixture<3>   s(ball_on_block(3, f, degree, "hard"),
-                     "converges3" + std::to_string(degree) +
-                       std::to_string(int(100 * f)) + ".prm");
-        const auto   ball = master_of<3>(s, "ball.curved", f);
-        unsigned int n = 0, failed = 0, incomplete = 0;
-        for (double r = 0.8; r < 1.3; r += 0.02)
-          for (double a = 0.; a < 0.5 * numbers::PI; a += 0.05)
-            for (double b = 0.; b < 0.5 * numbers::PI; b += 0.05)
-              {
-                const Point<3> xs(0.05 + r * std::sin(a) * std::cos(b),
-                                  1.9 - r * std::cos(a),
-                                  0.05 + r * std::sin(a) * std::sin(b));
-                const auto     p = ball->project(xs, 3.);
-                ++n;
-                failed += p.failed ? 1 : 0;
-                incomplete += p.incomplete ? 1 : 0;
-              }
-        EXPECT_EQ(failed, 0u)
-          << "3D Q" << degree << " f = " << f << ", of " << n << " points";
-        EXPECT_EQ(incomplete, 0u)
-          << "3D Q" << degree << " f = " << f << ", of " << n << " points";
-      }
+      expect_every_projection_complete<3>(degree, f, space);
 }

@@ -108,7 +108,6 @@ namespace glide
     using typename ContactEnforcement<dim>::Force;
     using typename ContactEnforcement<dim>::Linearization;
 
-
     std::string
     name() const override
     {
