@@ -319,7 +319,10 @@ namespace glide
           contact.assemble(u, nullptr, &jacobian);
         }
       TimerOutput::Scope s(timer, "linear solver: setup");
-      linear_solver.initialize(jacobian, modes);
+      // AMG on the condensed system keeps what it needs of the Jacobian:
+      // its memory (a seventh of a 3D scene's peak) goes back before the
+      // hierarchy is built, until the next set-up.
+      linear_solver.initialize(jacobian, modes, [this] { jacobian.clear(); });
       // AMG chosen, but this Jacobian's multipliers could not be
       // eliminated: noted when that starts and when it ends.
       if (const bool fallback = !linear_solver.fallback_reason().empty();
@@ -337,11 +340,6 @@ namespace glide
                      "can be eliminated)"
                   << std::endl;
         }
-      // AMG on the condensed system keeps what it needs of the Jacobian:
-      // its memory (a third of a 3D scene's peak) goes back until the next
-      // set-up.
-      if (!linear_solver.keeps_matrix())
-        jacobian.clear();
     };
     callbacks.solve_jacobian = [this](const VectorType &rhs, VectorType &dx) {
       TimerOutput::Scope s(timer, "linear solver: solve");
@@ -563,7 +561,17 @@ namespace glide
     {
       TimerOutput::Scope s(timer, "postprocessing");
       const char        *axis[] = {"x", "y", "z"};
-      for (const auto &[surface, force] : elasticity.reactions(U, t))
+      // Contact forces at nodes with prescribed displacements go to their
+      // supports: without them a slave node driven into its master (the
+      // corner scene) left the reactions out of balance by its force.
+      VectorType contact_forces;
+      if (contact.active())
+        {
+          contact_forces.reinit(elasticity.locally_owned(), comm);
+          contact.nodal_forces(U, contact_forces);
+        }
+      for (const auto &[surface, force] : elasticity.reactions(
+             U, t, contact.active() ? &contact_forces : nullptr))
         for (unsigned int d = 0; d < dim; ++d)
           row.emplace_back("reaction_" + surface + "_" + axis[d],
                            format_number(force[d]));

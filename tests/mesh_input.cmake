@@ -93,3 +93,11 @@ foreach(case abaqus_two_bodies_contact gmsh_and_abaqus_bodies_balance node_set_p
   add_test(NAME scene.mesh_import_${case}
     COMMAND ${GLIDE_PYTHON} ${SCENES}/mesh_import_tests.py --glide $<TARGET_FILE:glide> --case ${case})
 endforeach()
+# Ids the reader cannot hold, and sets of nodes the file does not define
+# (2026-12-06: 'stol'/'stoi' with exit 2, a silent node set, a GENERATE
+# range that filled the memory or, overflowing, never ended).
+glide_mesh_error_test(abaqus_huge_id bad_huge_id.inp "13: cannot read '99999999999999999999' as a node id \\(a positive integer of at most 18 digits\\)")
+glide_mesh_error_test(abaqus_huge_face_id bad_huge_face_id.inp "13: face identifier 'S99999999999' of surface 'TOP': glide reads the faces S1 to S4")
+glide_mesh_error_test(abaqus_nset_undefined_node bad_nset_undefined_node.inp "12: node 777 of \\*NSET 'TOP' is not defined in the file")
+glide_mesh_error_test(abaqus_generate_range bad_generate_range.inp "13: GENERATE from 1 to 200000000 in steps of 1 names 200000000 ids, more than the file defines")
+glide_mesh_error_test(abaqus_generate_overflow bad_generate_overflow.inp "12: node 9223372036854775800 of \\*NSET 'ALL' is not defined in the file")

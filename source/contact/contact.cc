@@ -925,12 +925,12 @@ namespace glide
 
   template <int dim>
   void
-  Contact<dim>::assemble(const VectorType &U_in,
-                         VectorType       *F,
-                         MatrixType       *J) const
+  Contact<dim>::assemble(const VectorType                &U_in,
+                         VectorType                      *F,
+                         MatrixType                      *J,
+                         const AffineConstraints<double> &constraints) const
   {
-    const VectorType &U           = view(U_in);
-    const auto       &constraints = elasticity.update_constraints();
+    const VectorType &U = view(U_in);
     // Under MPI: an iterate whose searches could reach master facets not
     // held here (gathered around where the nodes were, follow()) would
     // not be the serial run's residual.

@@ -82,7 +82,13 @@ namespace glide
     // and the Newton systems lose the digits the tolerance needs (the
     // load steps fail). Symmetrically, mu / K grows without bound as
     // nu -> -1.
-    require(poissons_ratio >= -0.9999 && poissons_ratio <= 0.4999,
+    require(poissons_ratio >= -0.9999,
+            "Parameter '" + path +
+              "/Material/Poisson's ratio' = " + short_number(poissons_ratio) +
+              " must satisfy -0.9999 <= nu <= 0.4999: at nu = -1 the bulk "
+              "modulus is zero (the material offers no resistance to a "
+              "change of volume) and the stiffness matrix is singular.");
+    require(poissons_ratio <= 0.4999,
             "Parameter '" + path +
               "/Material/Poisson's ratio' = " + short_number(poissons_ratio) +
               " must satisfy -0.9999 <= nu <= 0.4999: closer to 0.5 the "

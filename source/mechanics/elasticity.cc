@@ -482,7 +482,7 @@ namespace glide
                                                owned_total,
                                                comm,
                                                relevant_total);
-    pattern_matrix.reinit(owned_total, owned_total, dsp, comm);
+    pattern.reinit(owned_total, owned_total, dsp, comm);
   }
 
   template <int dim>
@@ -936,12 +936,16 @@ namespace glide
 
   template <int dim>
   std::map<std::string, Tensor<1, dim>>
-  Elasticity<dim>::reactions(const VectorType &U, const double t) const
+  Elasticity<dim>::reactions(const VectorType &U,
+                             const double      t,
+                             const VectorType *contact_forces) const
   {
     // Condense hanging nodes only: then the residual vanishes at every DoF
     // but the Dirichlet ones, where it is the reaction.
     VectorType F(owned_total, comm);
     assemble(U, t, &F, nullptr, hanging_node_constraints);
+    if (contact_forces)
+      F += *contact_forces;
     std::map<std::string, Tensor<1, dim>> result;
     for (const auto &d : dirichlet)
       {
@@ -1752,6 +1756,24 @@ namespace glide
                   "): double precision cannot resolve the bodies next to "
                   "it. Use 0 (automatic), or hard contact ('Enforcement = "
                   "hard').");
+    // The other end: a penalty so soft that the bodies pass through each
+    // other with (almost) no contact force, in silence.
+    for (const auto &cp : scene.contact_pairs)
+      if (cp.enforcement == Enforcement::penalty && cp.penalty_stiffness > 0 &&
+          std::isfinite(E_min))
+        require(!(cp.penalty_stiffness * L * maximum_stiffness_ratio < E_min),
+                file + "Parameter 'Contact pair " + cp.name +
+                  "/Penalty stiffness' = " +
+                  // short_number() writes tiny numbers as 0
+                  (std::ostringstream()
+                   << std::setprecision(4) << cp.penalty_stiffness)
+                    .str() +
+                  " is less than 1e-12" +
+                  " times the stiffness of the bodies (Young's modulus " +
+                  short_number(E_min) + " / scene size " + short_number(L) +
+                  "): the bodies would pass through each other with no "
+                  "contact force. Use 0 (automatic: 1000 E / h), or hard "
+                  "contact ('Enforcement = hard').");
   }
 
   template <int dim>

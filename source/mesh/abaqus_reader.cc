@@ -176,10 +176,21 @@ namespace glide
     long
     to_id(const std::string &s, const Line &l, const std::string &what)
     {
-      require(is_integer(s) && std::stol(s) > 0,
+      // Ids beyond the range of long (stol throws) are no ids either.
+      long id = 0;
+      if (is_integer(s))
+        try
+          {
+            id = std::stol(s);
+          }
+        catch (const std::out_of_range &)
+          {
+            id = 0;
+          }
+      require(id > 0,
               where(l) + ": cannot read '" + s + "' as " + what +
-                " (a positive integer).");
-      return std::stol(s);
+                " (a positive integer of at most 18 digits).");
+      return id;
     }
 
     double
@@ -517,7 +528,8 @@ namespace glide
             {
               const std::string  f       = upper(items[1]);
               const unsigned int n_faces = 2 * dim;
-              require(f.size() >= 2 && f[0] == 'S' && is_integer(f.substr(1)) &&
+              require(f.size() >= 2 && f.size() <= 3 && f[0] == 'S' &&
+                        is_integer(f.substr(1)) &&
                         std::stoi(f.substr(1)) >= 1 &&
                         std::stoi(f.substr(1)) <= static_cast<int>(n_faces),
                       where(l) + ": face identifier '" + items[1] +
@@ -769,8 +781,20 @@ namespace glide
                                          1;
                       require(b >= a,
                               where(d) + ": GENERATE needs first <= last.");
-                      for (long id = a; id <= b; id += inc)
-                        set.ids[instance].insert(id);
+                      // Every id of the range must be defined on a line of
+                      // the file, so a range of more ids than the file has
+                      // lines is a mistake (a huge range filled the memory).
+                      const long count = (b - a) / inc + 1;
+                      require(count <= static_cast<long>(lines.size()),
+                              where(d) + ": GENERATE from " +
+                                std::to_string(a) + " to " + std::to_string(b) +
+                                " in steps of " + std::to_string(inc) +
+                                " names " + std::to_string(count) +
+                                " ids, more than the file defines (it has " +
+                                std::to_string(lines.size()) +
+                                " lines); check the range.");
+                      for (long n = 0; n < count; ++n)
+                        set.ids[instance].insert(a + n * inc);
                     }
                   else if (nodes && k.has("ELSET"))
                     ; // handled below
@@ -1018,6 +1042,15 @@ namespace glide
           const auto it = s.ids.find(inst);
           if (it == s.ids.end() || (s.internal && &out == &c.node_sets))
             return;
+          // A node set's ids must be nodes of the file (element sets are
+          // checked where they are read).
+          if (&out == &c.node_sets)
+            for (const auto id : it->second)
+              require(c.nodes.count(id) > 0,
+                      where(s.line) + ": node " + std::to_string(id) +
+                        " of *NSET '" + s.name + "'" +
+                        (inst.empty() ? "" : " (instance '" + inst + "')") +
+                        " is not defined in the file (*NODE).");
           const std::string u = upper(s.name);
           if (!spelled.count(u))
             spelled[u] = s.name;

@@ -39,6 +39,59 @@ namespace glide
       return text;
     }
 
+    /// Follow the 'include' statements of a .prm scene file (deal.II's
+    /// ParameterHandler opens them relative to the current directory) and
+    /// refuse a file that includes itself, directly or through others: the
+    /// parser recursed until the stack overflowed (a segmentation fault
+    /// without a message). @p chain holds the files that lead to @p file,
+    /// as written and as canonical paths.
+    void
+    check_includes(const std::string                                &file,
+                   std::vector<std::pair<std::string, std::string>> &chain)
+    {
+      std::error_code   ec;
+      const std::string canonical =
+        std::filesystem::weakly_canonical(file, ec).string();
+      const std::string top = chain.empty() ? file : chain.front().first;
+      std::string       path;
+      for (const auto &[written, c] : chain)
+        path += "'" + written + "' -> ";
+      path += "'" + file + "'";
+      for (const auto &link : chain)
+        require(link.second != canonical,
+                "The scene file '" + top + "' includes itself: " + path +
+                  ". Remove the 'include' that leads back to a file that "
+                  "includes it.");
+      require(chain.size() < 32,
+              "The scene file '" + top +
+                "' nests 'include' statements more than 32 deep: " + path +
+                ".");
+      if (!chain.empty())
+        require(!std::filesystem::is_directory(file, ec),
+                "The scene file '" + chain.back().first + "' includes '" +
+                  file +
+                  "', which is a directory; 'include' takes the path of a "
+                  ".prm file (relative to the current directory).");
+      std::ifstream in(file);
+      if (!in)
+        return; // the parser names the file it cannot open
+      chain.emplace_back(file, canonical);
+      std::string line;
+      while (std::getline(in, line))
+        {
+          if (const auto hash = line.find('#'); hash != std::string::npos)
+            line.erase(hash);
+          line = Utilities::trim(line);
+          if (line.rfind("include ", 0) == 0 || line.rfind("INCLUDE ", 0) == 0)
+            {
+              const std::string name = Utilities::trim(line.substr(8));
+              if (!name.empty())
+                check_includes(name, chain);
+            }
+        }
+      chain.pop_back();
+    }
+
     std::vector<std::string>
     split_names(const std::string &list)
     {
@@ -434,6 +487,11 @@ namespace glide
         for (const auto &surface :
              Utilities::split_string_list(bc.surface, ','))
           {
+            // A list may mix surfaces and node sets (Elasticity::setup).
+            if ((bc.type == BoundaryConditionType::force ||
+                 bc.is_dirichlet()) &&
+                node_set_names.count(surface) > 0)
+              continue;
             const auto dot = surface.find('.');
             require(dot != std::string::npos,
                     "Parameter '" + path + "' = '" + surface +
@@ -485,6 +543,14 @@ namespace glide
             "Parameter 'Verification/Manufactured solution' needs a "
             "geometrically linear scene ('Discretization/Geometric "
             "nonlinearity = false').");
+    // The manufactured body force and boundary values make the exact
+    // solution that of the bodies alone; contact forces are not part of
+    // it, so the error columns would measure nothing.
+    require(!(manufactured_solution != "none" && !contact_pairs.empty()),
+            "Parameter 'Verification/Manufactured solution' needs a scene "
+            "without contact ('Contact pairs' empty): the manufactured "
+            "solution knows no contact forces, so its error columns would "
+            "be meaningless.");
 
     // Every result file's name fits the file systems' limit of 255 bytes
     // (NAME_MAX), with room for 6-digit step numbers and the '.tmp' of a
@@ -762,6 +828,14 @@ namespace glide
         }
     };
 
+    if (const auto d = filename.rfind('.');
+        d == std::string::npos ||
+        (filename.substr(d) != ".xml" && filename.substr(d) != ".json"))
+      {
+        std::vector<std::pair<std::string, std::string>> chain;
+        check_includes(filename, chain);
+      }
+
     // Pass 1: the lists of names only; everything else is skipped.
     std::vector<std::string> bodies, conditions, node_sets, pairs;
     try
@@ -778,6 +852,16 @@ namespace glide
     catch (const ExceptionBase &e)
       {
         throw InputError("In scene file '" + filename + "': " + explain(e));
+      }
+    catch (const InputError &)
+      {
+        throw;
+      }
+    catch (const std::exception &e)
+      {
+        // The XML and JSON parsers' own errors (boost's property tree).
+        throw InputError("In scene file '" + filename +
+                         "': cannot be read: " + e.what() + ".");
       }
     check_names(bodies, "Bodies");
     check_names(conditions, "Boundary conditions");

@@ -1155,6 +1155,42 @@ def case_first_contact_without_line_search():
     check(firsts[1] - firsts[0] <= 2, f"first step's iterations grow by at most 2 per level: {firsts}")
 
 
+def case_surface_list_with_a_node_set():
+    """A boundary condition's 'Surface' may list surfaces and node sets
+    together (doc/parameters.md). Scene::check refused a node set in such a
+    list ("is not of the form <body>.<surface>") until 2026-12-06, while
+    the condition alone on the node set ran. Here the fixed bottom of
+    block.prm is named once as 'block.bottom' and once as 'p, block.bottom'
+    with the node set p at its corner (0, 0): the same condition, so the
+    same reaction."""
+    block = scene("block.prm")
+    rows, _, _ = run(block, "Output/Write VTU=false", name="plain")
+    mixed, _, _ = run(block, "Output/Write VTU=false", "Node sets=p", "Node set p/Points=0, 0",
+                      "Boundary condition bottom/Surface=p, block.bottom", name="mixed")
+    for c in ("x", "y"):
+        close(mixed[-1][f"reaction_bottom_{c}"], rows[-1][f"reaction_bottom_{c}"], 1e-12,
+              f"reaction_bottom_{c} with the node set in the list")
+
+
+def case_reactions_include_contact_at_prescribed_nodes():
+    """Reactions balance where contact acts on a node with a prescribed
+    displacement (P2, R10): in parameters/corner.prm the square's slave
+    surfaces end at nodes of its pushed sides, (0.5, 0) and (0, 0.5),
+    which the push drives into the floor and the wall. Their contact
+    force goes to the push's support. Until 2026-12-06 the reactions were
+    summed from the elastic residual alone and missed it: reaction_push_y
+    -0.0135 against reaction_floor_bottom_y +0.4851, out of balance by 0.47.
+    Nothing else loads the scene, so the reactions of all conditions sum
+    to zero in x and y (to 1e-9 of the largest)."""
+    rows, _, _ = run(scene_file("corner.prm"), "Output/Write VTU=false", name="corner")
+    last = rows[-1]
+    for c in ("x", "y"):
+        forces = [last[f"reaction_{b}_{c}"] for b in ("floor_bottom", "wall_back", "push")]
+        largest = max(abs(f) for f in forces)
+        check(largest > 0.1 and abs(sum(forces)) <= 1e-9 * largest,
+              f"reactions sum to zero in {c}: {forces} (sum {sum(forces):.3g})")
+
+
 def case_contact_slip():
     """Issue 3 section 4 (CSLIP, R12.1 for finite sliding) and P5: a block
     (nu = 0, top fixed) rests on a rigid plane at its bottom; the plane

@@ -172,7 +172,19 @@ namespace glide
     /// displacement constraints. Changes nothing: F is a function of U,
     /// the load factor, the holds and the committed state (R16.1).
     void
-    assemble(const VectorType &U, VectorType *F, MatrixType *J) const;
+    assemble(const VectorType &U, VectorType *F, MatrixType *J) const
+    {
+      assemble(U, F, J, elasticity.update_constraints());
+    }
+
+    /// Add the contact forces at U to F, condensed with the hanging-node
+    /// constraints only: at a DoF with a prescribed displacement F then
+    /// holds the contact force that its support carries too (reactions).
+    void
+    nodal_forces(const VectorType &U, VectorType &F) const
+    {
+      assemble(U, &F, nullptr, elasticity.hanging_constraints());
+    }
 
     /// Entries of KINSOL's scaling vectors for the multiplier rows and
     /// unknowns (contact forces): 1 / (E_pair A_ref), E_pair the pair's
@@ -276,6 +288,13 @@ namespace glide
     }
 
   private:
+    /// assemble() with the given constraints.
+    void
+    assemble(const VectorType                        &U,
+             VectorType                              *F,
+             MatrixType                              *J,
+             const dealii::AffineConstraints<double> &constraints) const;
+
     struct Pair
     {
       const ContactPairParameters *parameters;

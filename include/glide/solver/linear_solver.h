@@ -9,6 +9,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -120,9 +121,14 @@ namespace glide
 
     /// Factorize (direct) or build the AMG hierarchy for @p matrix.
     void
-    initialize(const dealii::TrilinosWrappers::SparseMatrix &matrix,
-               const std::vector<dealii::TrilinosWrappers::MPI::Vector>
-                 &near_null_space);
+    /// With AMG on the condensed system, @p release is called once the
+    /// multipliers are eliminated and before the hierarchy is built: the
+    /// caller may free @p matrix there (keeps_matrix() is false), which
+    /// takes it off the run's peak memory.
+    initialize(
+      const dealii::TrilinosWrappers::SparseMatrix             &matrix,
+      const std::vector<dealii::TrilinosWrappers::MPI::Vector> &near_null_space,
+      const std::function<void()>                              &release = {});
 
     /// Solve matrix * x = b to @p relative_tolerance (ignored by the direct
     /// solver); returns the number of Krylov iterations (1 for direct).
