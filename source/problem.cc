@@ -611,11 +611,22 @@ namespace glide
         VectorType contact_force;
         if (contact.active())
           {
+            // All nodal contact forces, those at nodes with prescribed
+            // displacements too (they were written as 0 there).
             contact_force.reinit(U);
-            contact.assemble(U, &contact_force, nullptr);
+            contact.nodal_forces(U, contact_force);
             contact_force *= -1.;
           }
         vtu->write(step, t, U, contact.active() ? &contact_force : nullptr);
+        if (const auto n = vtu->inverted_points(); n > 0)
+          pcout << "  warning: the stress fields of this step's VTU are NaN "
+                   "at "
+                << n
+                << " output point(s) where det F <= 0: vertices of strongly "
+                   "distorted cells, where the solution (det F > 0 at the "
+                   "quadrature points) inverts the cell. Refine the mesh "
+                   "there or use smaller load steps."
+                << std::endl;
       }
     // The indexes (.pvd files, statistics.csv) after the data they list.
     output->commit_step([&]() {

@@ -5,11 +5,13 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 namespace glide
 {
@@ -82,9 +84,28 @@ namespace glide
                 const double r = inputs.evaluation_points[q][0];
                 H[2][2] = r > 0 ? inputs.solution_values[q][0] / r : H[0][0];
               }
-            Tensor2 P;
-            law.evaluate(H, P);
-            const Tensor2 sigma = law.cauchy_stress();
+            // At finite strain the converged solution keeps det F > 0 at
+            // the quadrature points; at an output point (a vertex) of a
+            // strongly distorted cell it may not. The stress is undefined
+            // there: written as NaN and counted (the step ended the run
+            // with "inverted element" after it had converged).
+            Tensor2 sigma;
+            Tensor2 F = H;
+            for (unsigned int i = 0; i < 3; ++i)
+              F[i][i] += 1.;
+            if (law.finite_strain() && !(determinant(F) > 0.))
+              {
+                ++inverted;
+                for (unsigned int i = 0; i < 3; ++i)
+                  for (unsigned int j = 0; j < 3; ++j)
+                    sigma[i][j] = std::numeric_limits<double>::quiet_NaN();
+              }
+            else
+              {
+                Tensor2 P;
+                law.evaluate(H, P);
+                sigma = law.cauchy_stress();
+              }
             // Small strain, or Green-Lagrange strain at finite strain.
             Tensor2 E = 0.5 * (H + transpose(H));
             if (law.finite_strain())
@@ -106,6 +127,9 @@ namespace glide
             computed[q](k++) = std::sqrt(1.5 * scalar_product(dev, dev));
           }
       }
+
+      /// Output points where det F <= 0 (stress written as NaN).
+      mutable std::atomic<unsigned int> inverted{0};
 
     private:
       const Elasticity<dim>                         &elasticity;
@@ -175,6 +199,7 @@ namespace glide
     data_out.build_patches(elasticity.get_mapping(),
                            degree,
                            DataOut<dim>::curved_inner_cells);
+    last_inverted = Utilities::MPI::sum(stress.inverted.load(), comm);
 
     char number[16];
     std::snprintf(number, sizeof(number), "%04u", step);

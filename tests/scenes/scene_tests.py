@@ -1191,6 +1191,30 @@ def case_reactions_include_contact_at_prescribed_nodes():
               f"reactions sum to zero in {c}: {forces} (sum {sum(forces):.3g})")
 
 
+def case_output_at_an_inverted_vertex():
+    """A converged finite-strain step whose solution inverts a cell at a
+    vertex (det F > 0 at the quadrature points, <= 0 at the corner where a
+    concentrated force pulls, tests/scenes/block.prm with -400, -400 on its
+    corner (2, 1)): the VTU's stress fields are NaN there, the log says so,
+    and the run goes on. Until 2026-12-06 the output's stress evaluation
+    threw "inverted element" after the step at 0.5625 had converged and
+    ended the run (exit 2) with that step unwritten. Now the run goes on
+    (one more step converges) to the load the mesh cannot carry and ends
+    with the load-step message."""
+    rows, log, out = run(scene("block.prm"), "Discretization/Geometric nonlinearity=true", "Node sets=c",
+                         "Node set c/Points=2, 1", "Boundary condition load/Surface=c",
+                         "Boundary condition load/Type=force", "Boundary condition load/Function=-400*t; -400*t",
+                         "Load stepping/Number of steps=4", name="inverted", expect_status=2)
+    check("stress fields of this step's VTU are NaN at 1 output point(s)" in log,
+          "the log names the NaN stress at the inverted vertex")
+    check(re.search(r"load step [0-9]+ failed at load factor 0\.5[0-9]* with the smallest increment", log)
+          is not None, "the run ends with the load-step message")
+    factors = [r["load_factor"] for r in rows]
+    check(0.5625 in factors, f"the step that inverts the vertex (0.5625) is in statistics.csv: {factors}")
+    pvd = open(os.path.join(out, "inverted.pvd")).read()
+    check(len(re.findall(r'file="', pvd)) == len(rows), "the .pvd lists every converged step")
+
+
 def case_contact_slip():
     """Issue 3 section 4 (CSLIP, R12.1 for finite sliding) and P5: a block
     (nu = 0, top fixed) rests on a rigid plane at its bottom; the plane

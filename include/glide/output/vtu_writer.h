@@ -36,12 +36,22 @@ namespace glide
           const VectorType  &U,
           const VectorType  *contact_force = nullptr);
 
+    /// Output points of the last write() where det F <= 0 (a strongly
+    /// distorted cell's vertex at finite strain), whose stress fields
+    /// were written as NaN; the same on every process.
+    unsigned int
+    inverted_points() const
+    {
+      return last_inverted;
+    }
+
     /// Process 0, inside OutputDirectory::commit_step(): write the `.pvd`
     /// listing every VTU written so far.
     void
     write_pvd();
 
   private:
+    unsigned int                                last_inverted = 0;
     const Elasticity<dim>                      &elasticity;
     OutputDirectory                            &output;
     const std::string                           name;
