@@ -101,3 +101,8 @@ glide_mesh_error_test(abaqus_huge_face_id bad_huge_face_id.inp "13: face identif
 glide_mesh_error_test(abaqus_nset_undefined_node bad_nset_undefined_node.inp "12: node 777 of \\*NSET 'TOP' is not defined in the file")
 glide_mesh_error_test(abaqus_generate_range bad_generate_range.inp "13: GENERATE from 1 to 200000000 in steps of 1 names 200000000 ids, more than the file defines")
 glide_mesh_error_test(abaqus_generate_overflow bad_generate_overflow.inp "12: node 9223372036854775800 of \\*NSET 'ALL' is not defined in the file")
+# A node that hangs on the side or face of a larger neighbour (the mesh is
+# not conforming): the body would be cut open there.
+glide_mesh_error_test(abaqus_hanging_node bad_hanging_node.inp "13: node 7 lies on a side of element 1 but is not one of its nodes: the mesh is not conforming")
+glide_mesh_error_test(gmsh_hanging_node bad_hanging_node.msh "[0-9]+: node 7 lies on a side of element 5 but is not one of its nodes")
+glide_mesh_error_test(abaqus_hanging_node_3d bad_hanging_node_3d.inp "[0-9]+: node [0-9]+ lies on a face of element 1 but is not one of its nodes" ${IN_3D})

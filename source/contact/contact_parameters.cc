@@ -107,7 +107,10 @@ namespace glide
       Patterns::Double(0.),
       "Penalty stiffness (stress per length). 0: automatic, 1000 "
       "E_pair / h with h the mean slave facet size and E_pair the smaller "
-      "Young's modulus of the slave's and the master's body.");
+      "Young's modulus of the slave's and the master's body. Values above "
+      "1e12 or below 1e-12 times E / L (L the scene's size) are refused: "
+      "double precision cannot resolve the bodies next to the first, and "
+      "the bodies pass through each other with the second.");
     prm.declare_entry(
       "Linearization",
       "unsymmetric",

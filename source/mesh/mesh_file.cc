@@ -87,6 +87,64 @@ namespace glide
       return j;
     }
 
+    /// Whether @p p lies on the face with corners @p x (deal.II's
+    /// lexicographic order: a segment in 2D, a quadrilateral in 3D) without
+    /// being one of its corners: within 1e-3 of the face's size of it, and
+    /// farther than that from every corner. A flat face is split into two
+    /// triangles; a warped one is taken as those triangles.
+    bool
+    inside_face(const std::array<double, 3>              &p,
+                const std::vector<std::array<double, 3>> &x)
+    {
+      const auto minus = [](const std::array<double, 3> &a,
+                            const std::array<double, 3> &b) {
+        return std::array<double, 3>{{a[0] - b[0], a[1] - b[1], a[2] - b[2]}};
+      };
+      const auto dot = [](const std::array<double, 3> &a,
+                          const std::array<double, 3> &b) {
+        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+      };
+      double size = 0;
+      for (const auto &a : x)
+        for (const auto &b : x)
+          size = std::max(size, std::sqrt(dot(minus(a, b), minus(a, b))));
+      const double tolerance = 1e-3 * size;
+      for (const auto &a : x)
+        if (std::sqrt(dot(minus(p, a), minus(p, a))) <= tolerance)
+          return false;
+      if (x.size() == 2)
+        {
+          const auto   e = minus(x[1], x[0]), d = minus(p, x[0]);
+          const double t = dot(d, e) / dot(e, e);
+          const double normal =
+            std::sqrt(std::max(0., dot(d, d) - t * t * dot(e, e)));
+          return t > 0 && t < 1 && normal <= tolerance;
+        }
+      // Triangles (0, 1, 3) and (0, 3, 2) of the lexicographic corners.
+      for (const auto &[i, j, k] : {std::array<unsigned int, 3>{{0, 1, 3}},
+                                    std::array<unsigned int, 3>{{0, 3, 2}}})
+        {
+          const auto e1 = minus(x[j], x[i]), e2 = minus(x[k], x[i]),
+                     d     = minus(p, x[i]);
+          const double a11 = dot(e1, e1), a12 = dot(e1, e2), a22 = dot(e2, e2),
+                       b1 = dot(d, e1), b2 = dot(d, e2);
+          const double det = a11 * a22 - a12 * a12;
+          if (det <= 0)
+            continue;
+          const double s     = (b1 * a22 - b2 * a12) / det,
+                       t     = (a11 * b2 - a12 * b1) / det;
+          const double slack = tolerance / size;
+          if (s < -slack || t < -slack || s + t > 1 + slack)
+            continue;
+          std::array<double, 3> r = d;
+          for (unsigned int c = 0; c < 3; ++c)
+            r[c] -= s * e1[c] + t * e2[c];
+          if (std::sqrt(dot(r, r)) <= tolerance)
+            return true;
+        }
+      return false;
+    }
+
     /// Find @p name among @p sets: exactly, or ignoring case (Abaqus names
     /// are case-insensitive).
     template <typename Map>
@@ -274,6 +332,55 @@ namespace glide
                     " and a third element share a face; elements must not "
                     "overlap (is an element defined twice under two ids?).");
         }
+
+    // A conforming mesh: no corner of a boundary face lies on another
+    // boundary face that shares a corner with it. Such a node hangs on the
+    // face of a larger neighbour (meshed apart, or refined on one side), and
+    // the body would be cut open between the two. Touching faces of
+    // separate parts (a mesh file may hold several) share no corner and are
+    // left alone.
+    {
+      std::map<unsigned int, std::vector<const std::vector<unsigned int> *>>
+        boundary_at;
+      for (const auto &[k, use] : faces)
+        if (use.uses == 1)
+          for (const auto v : k)
+            boundary_at[v].push_back(&k);
+      std::vector<long> node_of(mesh.vertices.size());
+      for (const auto &[n, v] : vertex_of)
+        node_of[v] = n;
+      for (const auto &[k, use] : faces)
+        if (use.uses == 1)
+          {
+            std::vector<std::array<double, 3>> x;
+            for (const auto i : cell_faces(dim)[use.face])
+              x.push_back(mesh.vertices[mesh.cells[use.cell][i]]);
+            for (const auto a : k)
+              for (const auto *other : boundary_at[a])
+                for (const auto v : *other)
+                  if (!std::binary_search(k.begin(), k.end(), v) &&
+                      inside_face(mesh.vertices[v], x))
+                    {
+                      const auto &cell = content.cells[selected[use.cell]];
+                      throw InputError(
+                        file_line(content.file, cell.line) + ": node " +
+                        std::to_string(node_of[v]) + " lies on a " +
+                        (dim == 2 ? "side" : "face") + " of element " +
+                        std::to_string(cell.id) +
+                        " but is not one of its nodes: the mesh is not "
+                        "conforming there (a hanging node), and the body "
+                        "would be cut open along that " +
+                        (dim == 2 ? "side" : "face") +
+                        ". Mesh the body so that neighbouring elements "
+                        "share whole " +
+                        (dim == 2 ? "sides" : "faces") +
+                        " (in Gmsh: one mesh of the whole body, its regions "
+                        "sharing their boundary curves and surfaces), or put "
+                        "the two sides in separate element sets as two "
+                        "bodies in contact.");
+                    }
+          }
+    }
 
     // Surfaces: faces of the body's boundary.
     std::map<std::vector<unsigned int>, std::set<std::string>> labels;
