@@ -56,18 +56,47 @@ namespace glide
       return u;
     }
 
+    /// What solve_1d() found.
+    enum class Root
+    {
+      found,        ///< a root (anywhere, not only in [0, 1])
+      below,        ///< no root in [0, 1], and the equation's zero lies
+                    ///< beyond s = 0: R(0) is the smaller in magnitude
+      above,        ///< likewise beyond s = 1
+      not_converged ///< a root in [0, 1] that neither Newton nor
+                    ///< bisection found (non-finite values)
+    };
+
     /**
      * Root of a scalar equation R(s) = 0 near @p start: Newton in double
      * to convergence, then one Newton step in T from the converged point,
      * which carries the exact first derivatives of the root (implicit
      * function theorem) when T is a Fad. @p f(s, R, dR) evaluates R and
-     * R' at s for s of type double or T. Returns false if Newton does not
-     * converge.
+     * R' at s for s of type double or T.
+     *
+     * Where Newton does not converge, the outcome is decided on [0, 1],
+     * the facet's parameter range: a sign change of R there is bracketed
+     * and bisected (then polished as above); without one, the line of the
+     * projection misses the facet (a normal parallel to it, or a field of
+     * normals that does not sweep over the point), which is geometry, not
+     * a failure, and the side where the zero lies is the end with the
+     * smaller |R| (exact for a flat facet with one normal, where R is
+     * linear in s).
      */
     template <typename T, typename F>
-    bool
+    Root
     solve_1d(const F &f, const double start, T &root)
     {
+      const auto polish = [&](const double s) {
+        if constexpr (std::is_same_v<T, double>)
+          root = s;
+        else
+          {
+            T sT = s, RT, dRT;
+            f(sT, RT, dRT);
+            root = sT - RT / dRT;
+          }
+      };
       double s             = start;
       double previous_step = std::numeric_limits<double>::max();
       for (unsigned int it = 0; it < 30; ++it)
@@ -75,29 +104,49 @@ namespace glide
           double R, dR;
           f(s, R, dR);
           if (!(std::abs(dR) > 0.) || !std::isfinite(R))
-            return false;
+            break;
           const double step = R / dR;
           s -= step;
           if (!std::isfinite(s) || std::abs(s) > 1e3)
-            return false;
+            break;
           // Converged, or at the round-off floor (mortar_geometry::
           // newton_stalled(): a short master facet far from the origin).
           if (std::abs(step) < 1e-14 * (1. + std::abs(s)) ||
               mortar_geometry::newton_stalled(std::abs(step), previous_step))
             {
-              if constexpr (std::is_same_v<T, double>)
-                root = s;
-              else
-                {
-                  T sT = s, RT, dRT;
-                  f(sT, RT, dRT);
-                  root = sT - RT / dRT;
-                }
-              return true;
+              polish(s);
+              return Root::found;
             }
           previous_step = std::abs(step);
         }
-      return false;
+      double a = 0., b = 1., Ra, Rb, dR;
+      f(a, Ra, dR);
+      f(b, Rb, dR);
+      if (!std::isfinite(Ra) || !std::isfinite(Rb))
+        return Root::not_converged;
+      if ((Ra > 0.) == (Rb > 0.) && Ra != 0. && Rb != 0.)
+        return std::abs(Ra) < std::abs(Rb) ? Root::below : Root::above;
+      for (unsigned int it = 0; it < 60 && b - a > 1e-15; ++it)
+        {
+          const double m = 0.5 * (a + b);
+          double       Rm;
+          f(m, Rm, dR);
+          if (!std::isfinite(Rm))
+            return Root::not_converged;
+          if ((Rm > 0.) == (Ra > 0.) && Ra != 0.)
+            {
+              a  = m;
+              Ra = Rm;
+            }
+          else
+            b = m;
+        }
+      s = 0.5 * (a + b);
+      f(s, Ra, dR);
+      if (!(std::abs(dR) > 0.))
+        return Root::not_converged;
+      polish(s);
+      return Root::found;
     }
 
     /// Position and tangent of a 2D facet of degree @p p with node
@@ -527,6 +576,25 @@ namespace glide
                 (e0 * e0 + e1 * e1);
               return solve_1d<T>(f, start, xi);
             };
+            // The master parameter whose point lies on the slave normal
+            // line at slave parameter xi (in double, for decisions only).
+            const auto master_at =
+              [&](const std::vector<std::array<double, 2>> &Yd,
+                  const double                              xi,
+                  double                                   &eta) {
+                std::array<double, 3> N;
+                std::array<double, 2> x, a, nn, dnn;
+                field(xi, N, x, a, nn, dnn);
+                const auto h = [&](const double s, double &R, double &dR) {
+                  std::array<double, 3> Nm;
+                  std::array<double, 2> y, b;
+                  line<double, double>(pm, Yd, s, Nm, y, b);
+                  R  = cross(std::array<double, 2>{{y[0] - x[0], y[1] - x[1]}},
+                            nn);
+                  dR = cross(b, nn);
+                };
+                return solve_1d<double>(h, 0.5, eta);
+              };
             const double        mid_normal[2] = {plain(facet_normal(f, 0.5)[0]),
                                                  plain(facet_normal(f, 0.5)[1])};
             std::vector<Point_> points;
@@ -535,29 +603,74 @@ namespace glide
                 std::vector<V> Y;
                 for (const auto m : m_facets[c].nodes)
                   Y.push_back(xm[index_of(p.master, m)]);
+                std::vector<std::array<double, 2>> Yd;
+                for (const auto &v : Y)
+                  Yd.push_back({{plain(v[0]), plain(v[1])}});
                 // Only master facets that face the slave facet.
                 {
-                  std::array<double, 3>              N;
-                  std::array<double, 2>              y, b;
-                  std::vector<std::array<double, 2>> Yd;
-                  for (const auto &v : Y)
-                    Yd.push_back({{plain(v[0]), plain(v[1])}});
+                  std::array<double, 3> N;
+                  std::array<double, 2> y, b;
                   line<double, double>(pm, Yd, 0.5, N, y, b);
                   if (b[1] * mid_normal[0] - b[0] * mid_normal[1] >= 0.)
                     continue;
                 }
                 // The segment: the master facet's ends projected onto the
                 // slave facet along the slave normal field, cut to [0, 1].
-                T xa, xb;
-                if (!onto_slave(Y[0], xa) || !onto_slave(Y[pm], xb))
+                T          xa, xb;
+                const Root ra = onto_slave(Y[0], xa);
+                const Root rb = onto_slave(Y[pm], xb);
+                if (ra == Root::not_converged || rb == Root::not_converged)
                   {
                     t.failed = true;
                     continue;
                   }
                 using std::max;
                 using std::min;
-                const T lo = max(min(xa, xb), T(0.));
-                const T hi = min(max(xa, xb), T(1.));
+                T lo = max(min(xa, xb), T(0.));
+                T hi = min(max(xa, xb), T(1.));
+                if (ra != Root::found || rb != Root::found)
+                  {
+                    // A master end whose normal line misses the slave facet
+                    // (the slave normals turn fast, or run parallel to the
+                    // master): the segment is where the slave normal lines
+                    // hit the master facet, between the breakpoints that
+                    // exist. Each piece is tested at its middle; the pieces
+                    // that hit must be one run.
+                    std::vector<T> cuts{T(0.), T(1.)};
+                    for (const auto &[r, x] :
+                         {std::make_pair(ra, &xa), std::make_pair(rb, &xb)})
+                      if (r == Root::found && plain(*x) > 0. && plain(*x) < 1.)
+                        cuts.push_back(*x);
+                    std::sort(cuts.begin(),
+                              cuts.end(),
+                              [](const T &u, const T &v) {
+                                return plain(u) < plain(v);
+                              });
+                    int  first = -1, last = -1;
+                    bool split = false;
+                    for (unsigned int k = 0; k + 1 < cuts.size(); ++k)
+                      {
+                        double     eta;
+                        const Root r =
+                          master_at(Yd,
+                                    0.5 * (plain(cuts[k]) + plain(cuts[k + 1])),
+                                    eta);
+                        if (r == Root::found && eta >= 0. && eta <= 1.)
+                          {
+                            if (first < 0)
+                              first = k;
+                            else if (last != static_cast<int>(k) - 1)
+                              split = true;
+                            last = k;
+                          }
+                      }
+                    if (split)
+                      t.failed = true;
+                    if (first < 0 || split)
+                      continue;
+                    lo = cuts[first];
+                    hi = cuts[last + 1];
+                  }
                 if (!(plain(hi) - plain(lo) > 1e-12))
                   continue;
                 for (unsigned int g = 0; g < gauss.size(); ++g)
@@ -602,12 +715,15 @@ namespace glide
                       R  = cross(r, m);
                       dR = cross(b, m);
                     };
-                    T eta;
-                    if (!solve_1d<T>(h, 0.5, eta))
-                      {
-                        t.failed = true;
-                        continue;
-                      }
+                    // A slave normal that misses the master facet (parallel
+                    // to it, or through neither of its ends' sides): no
+                    // partner on this facet.
+                    T          eta;
+                    const Root found = solve_1d<T>(h, 0.5, eta);
+                    if (found == Root::not_converged)
+                      t.failed = true;
+                    if (found != Root::found)
+                      continue;
                     V y, b;
                     line<T, T>(pm, Y, eta, q.Nm, y, b);
                     q.gap = (y[0] - x[0]) * nn[0] + (y[1] - x[1]) * nn[1];

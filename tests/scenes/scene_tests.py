@@ -1191,6 +1191,35 @@ def case_reactions_include_contact_at_prescribed_nodes():
               f"reactions sum to zero in {c}: {forces} (sum {sum(forces):.3g})")
 
 
+def case_mortar_normals_missing_the_master():
+    """Mortar in an inner corner (R14, R16.3): parameters/corner.prm with
+    both pairs mortar. The square's left side is slave of the floor pair
+    too; its averaged normals turn from (-1, -1)/sqrt(2) at the corner to
+    (-1, 0), parallel to the floor, so their lines miss the floor facets
+    there, and the floor's ends project onto no point of those slave
+    facets. That is geometry, not a failed projection. Until 2026-12-06
+    each step warned "a mortar projection did not converge" for the node
+    (0, 0.125) of each pair (projection_failed 1 per pair and step); the
+    forces are unchanged (the node is open either way). Checked: no
+    warning, projection_failed 0, the pairs' forces mirror each other
+    about the diagonal to 1e-9 and balance the push."""
+    rows, log, _ = run(scene_file("corner.prm"), "Output/Write VTU=false",
+                       "Contact pair floor/Formulation=mortar", "Contact pair wall/Formulation=mortar",
+                       name="corner_mortar")
+    check("did not converge" not in log, "no projection warning in the log")
+    for r in rows:
+        for p in ("floor", "wall"):
+            check(r[f"contact_{p}_projection_failed"] == 0,
+                  f"step {r['step']}: projection_failed of '{p}' is {r[f'contact_{p}_projection_failed']}")
+    last = rows[-1]
+    f, w = last["contact_floor_force_y"], last["contact_wall_force_x"]
+    check(f > 0.1, f"the floor carries the push: {f}")
+    close(w, f, 1e-9, "wall and floor forces mirror each other")
+    close(last["contact_floor_force_x"], last["contact_wall_force_y"], 1e-9, "the tangential parts mirror too")
+    close(-last["reaction_push_y"], last["reaction_floor_bottom_y"] + last["reaction_wall_back_y"], 1e-9,
+          "the supports balance the push in y")
+
+
 def case_output_at_an_inverted_vertex():
     """A converged finite-strain step whose solution inverts a cell at a
     vertex (det F > 0 at the quadrature points, <= 0 at the corner where a
