@@ -106,3 +106,8 @@ glide_mesh_error_test(abaqus_generate_overflow bad_generate_overflow.inp "12: no
 glide_mesh_error_test(abaqus_hanging_node bad_hanging_node.inp "13: node 7 lies on a side of element 1 but is not one of its nodes: the mesh is not conforming")
 glide_mesh_error_test(gmsh_hanging_node bad_hanging_node.msh "[0-9]+: node 7 lies on a side of element 5 but is not one of its nodes")
 glide_mesh_error_test(abaqus_hanging_node_3d bad_hanging_node_3d.inp "[0-9]+: node [0-9]+ lies on a face of element 1 but is not one of its nodes" ${IN_3D})
+# Gmsh 4.1 without $Entities (or with it after $Elements): its physical
+# groups would be empty; refused instead of "no such surface" later.
+glide_error_test(mesh.gmsh_no_entities "bad_no_entities.msh' \\(format 4.1\\) names physical groups in \\$PhysicalNames but has no \\$Entities section"
+  ${ONE_BODY} --set "Body part/Mesh file=${MESH_DATA}/bad_no_entities.msh")
+glide_mesh_error_test(gmsh_entities_after_elements bad_entities_after_elements.msh "[0-9]+: the \\$Entities section comes after \\$Elements")

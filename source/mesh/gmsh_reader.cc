@@ -361,7 +361,7 @@ namespace glide
     GmshReader::read()
     {
       double version = 0;
-      bool   nodes = false, elements = false;
+      bool   nodes = false, elements = false, entities = false;
       while (next < lines.size())
         {
           const std::size_t index   = next++;
@@ -416,6 +416,13 @@ namespace glide
             }
           else if (name == "Entities" && version > 4)
             {
+              require(!elements,
+                      where(index) +
+                        ": the $Entities section comes after $Elements; "
+                        "format 4.1 defines the entities (and their "
+                        "physical groups) before the elements that use "
+                        "them. Save the mesh again with Gmsh.");
+              entities = true;
               std::size_t i;
               auto        in = line(i, name);
               int         count[4];
@@ -560,6 +567,16 @@ namespace glide
       require(nodes && elements,
               "Gmsh file '" + file + "' has no " +
                 (nodes ? "$Elements" : "$Nodes") + " section.");
+      // Format 4.1 puts elements into physical groups through their
+      // entities; without $Entities every group would be empty.
+      require(version < 4 || entities || physical_names.empty(),
+              "Gmsh file '" + file +
+                "' (format 4.1) names physical groups in $PhysicalNames "
+                "but has no $Entities section, through which format 4.1 "
+                "puts elements into them: none of its groups would have an "
+                "element. Save the mesh again with Gmsh (format 4.1 with "
+                "$Entities), or in format 2.2 ('Mesh.MshFileVersion = "
+                "2.2'), where each element names its groups.");
       if (!face_problem.empty())
         {
           for (const auto &c : content.cells)

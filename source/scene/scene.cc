@@ -16,6 +16,7 @@
 #include <iomanip>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 namespace glide
 {
@@ -36,8 +37,30 @@ namespace glide
       std::istringstream in(s.str());
       while (in >> word)
         text += (text.empty() ? "" : " ") + word;
+      if (text.find("statement, but the given file to include") !=
+          std::string::npos)
+        {
+          std::error_code ec;
+          text += " deal.II opens 'include' files relative to the current "
+                  "directory (" +
+                  std::filesystem::current_path(ec).string() +
+                  "), not to the file that includes them: write the path "
+                  "from there, or an absolute path.";
+        }
+      if (text.find("Can't convert the parameter value") != std::string::npos &&
+          text.find("to a double") != std::string::npos)
+        {
+          if (!text.empty() && text.back() == '.')
+            text.pop_back();
+          text += " (not a number, or beyond double precision: its "
+                  "magnitude must lie between 1e-308 and 1e308, or be 0).";
+        }
       return text;
     }
+
+    /// The UTF-8 byte-order mark some Windows editors write at the start
+    /// of a text file.
+    constexpr const char *byte_order_mark = "\xEF\xBB\xBF";
 
     /// Follow the 'include' statements of a .prm scene file (deal.II's
     /// ParameterHandler opens them relative to the current directory) and
@@ -77,8 +100,18 @@ namespace glide
         return; // the parser names the file it cannot open
       chain.emplace_back(file, canonical);
       std::string line;
-      while (std::getline(in, line))
+      for (bool first = true; std::getline(in, line); first = false)
         {
+          // The scene file's own mark is skipped (Scene::read()); deal.II
+          // reads included files itself and would stop at the mark with
+          // a message about a line that looks right.
+          if (first && chain.size() > 1 && line.rfind(byte_order_mark, 0) == 0)
+            throw InputError(
+              "The scene file '" + file + "' (included by '" +
+              chain[chain.size() - 2].first +
+              "') starts with a UTF-8 byte-order mark, an invisible "
+              "character some editors write: save it as UTF-8 without BOM "
+              "(or ASCII).");
           if (const auto hash = line.find('#'); hash != std::string::npos)
             line.erase(hash);
           line = Utilities::trim(line);
@@ -836,13 +869,41 @@ namespace glide
         check_includes(filename, chain);
       }
 
+    // A .prm file is parsed from its text, without a UTF-8 byte-order mark
+    // at its start (deal.II took the mark for part of the first line and
+    // refused a line that looks right).
+    const bool prm_file = [&] {
+      const auto d = filename.rfind('.');
+      return d == std::string::npos ||
+             (filename.substr(d) != ".xml" && filename.substr(d) != ".json");
+    }();
+    std::string text;
+    if (prm_file)
+      {
+        std::ifstream      in(filename);
+        std::ostringstream all;
+        all << in.rdbuf();
+        text = all.str();
+        if (text.rfind(byte_order_mark, 0) == 0)
+          text.erase(0, 3);
+      }
+    const auto parse = [&](ParameterHandler &prm, const bool skip_undefined) {
+      if (prm_file)
+        {
+          std::istringstream in(text);
+          prm.parse_input(in, filename, "", skip_undefined);
+        }
+      else
+        prm.parse_input(filename, "", skip_undefined);
+    };
+
     // Pass 1: the lists of names only; everything else is skipped.
     std::vector<std::string> bodies, conditions, node_sets, pairs;
     try
       {
         ParameterHandler prm;
         declare_parameters(prm, {}, {}, {}, {});
-        prm.parse_input(filename, "", true);
+        parse(prm, true);
         apply_overrides(prm, true);
         bodies     = split_names(prm.get("Bodies"));
         conditions = split_names(prm.get("Boundary conditions"));
@@ -875,11 +936,42 @@ namespace glide
     declare_parameters(prm, bodies, conditions, node_sets, pairs);
     try
       {
-        prm.parse_input(filename);
+        parse(prm, false);
       }
     catch (const ExceptionBase &e)
       {
-        throw InputError("In scene file '" + filename + "': " + explain(e) +
+        // A subsection of an object the scene's lists do not name.
+        const std::string message = explain(e);
+        const std::string marker =
+          "There is no such subsection to be entered: ";
+        if (const auto at = message.find(marker); at != std::string::npos)
+          {
+            const std::string subsection =
+              Utilities::trim(message.substr(at + marker.size()));
+            const std::vector<
+              std::tuple<std::string, std::string, std::vector<std::string> *>>
+              kinds{{"Body ", "Bodies", &bodies},
+                    {"Boundary condition ", "Boundary conditions", &conditions},
+                    {"Node set ", "Node sets", &node_sets},
+                    {"Contact pair ", "Contact pairs", &pairs}};
+            for (const auto &[prefix, list, names] : kinds)
+              if (subsection.rfind(prefix, 0) == 0)
+                {
+                  std::string listed;
+                  for (const auto &n : *names)
+                    listed += (listed.empty() ? "" : ", ") + n;
+                  const std::string name = subsection.substr(prefix.size());
+                  throw InputError(
+                    "In scene file '" + filename +
+                    "': " + message.substr(0, at) +
+                    "the scene has 'subsection " + subsection + "', but '" +
+                    list + "' does not name '" + name + "' (it names: " +
+                    (listed.empty() ? std::string("nothing") : listed) +
+                    "). Add '" + name + "' to '" + list +
+                    "', or remove the subsection.");
+                }
+          }
+        throw InputError("In scene file '" + filename + "': " + message +
                          " Run 'glide --print-parameters' to see every "
                          "valid parameter.");
       }

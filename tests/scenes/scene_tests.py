@@ -1191,6 +1191,25 @@ def case_reactions_include_contact_at_prescribed_nodes():
               f"reactions sum to zero in {c}: {forces} (sum {sum(forces):.3g})")
 
 
+def case_scene_file_with_a_byte_order_mark():
+    """A scene file saved with a UTF-8 byte-order mark (P4.1; some Windows
+    editors write one): read as without it. Until 2026-12-06 deal.II took
+    the mark for part of the first line and refused it ("The line <# ...>
+    could not be parsed"), a line that looks right. Same statistics as the
+    scene without the mark."""
+    plain = open(scene_file("patch-test.prm"), "rb").read()
+    directory = tempfile.mkdtemp(prefix="glide-bom-")
+    marked = os.path.join(directory, "patch-test.prm")
+    with open(marked, "wb") as f:
+        f.write(b"\xef\xbb\xbf" + plain)
+    rows, _, _ = run(marked, "Output/Write VTU=false", name="marked")
+    reference, _, _ = run(scene_file("patch-test.prm"), "Output/Write VTU=false", name="plain")
+    check(len(rows) == len(reference) and len(rows) > 0, f"{len(rows)} steps with the mark, {len(reference)} without")
+    for a, b in zip(rows, reference):
+        close(a["contact_interface_normal_force"], b["contact_interface_normal_force"], 1e-14,
+              f"step {int(a['step'])}: same contact force")
+
+
 def case_mortar_normals_missing_the_master():
     """Mortar in an inner corner (R14, R16.3): parameters/corner.prm with
     both pairs mortar. The square's left side is slave of the floor pair
