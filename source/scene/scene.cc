@@ -6,6 +6,9 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
+#include <boost/property_tree/json_parser.hpp>
+#include <boost/property_tree/ptree.hpp>
+#include <boost/property_tree/xml_parser.hpp>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -13,6 +16,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <set>
 #include <sstream>
@@ -56,6 +60,85 @@ namespace glide
                   "magnitude must lie between 1e-308 and 1e308, or be 0).";
         }
       return text;
+    }
+
+    /// deal.II's message for a value of an XML or JSON scene that does not
+    /// match its pattern names the value, not the entry (a .prm file's
+    /// names both): add the entries of @p file that hold that value.
+    std::string
+    name_the_entry(const std::string &file, const std::string &message)
+    {
+      const std::string head = "The string <", tail = "> does not match";
+      const auto        a = message.find(head);
+      const auto        b = message.find(tail);
+      const auto        d = file.rfind('.');
+      if (a == std::string::npos || b == std::string::npos || b < a ||
+          d == std::string::npos ||
+          (file.substr(d) != ".xml" && file.substr(d) != ".json"))
+        return message;
+      const std::string value =
+        message.substr(a + head.size(), b - a - head.size());
+      // deal.II writes names with characters other than letters and
+      // digits as _XX (hex); it reads both forms.
+      const auto demangle = [](const std::string &name) {
+        std::string out;
+        for (std::size_t i = 0; i < name.size(); ++i)
+          if (name[i] == '_' && i + 2 < name.size() &&
+              std::isxdigit(static_cast<unsigned char>(name[i + 1])) &&
+              std::isxdigit(static_cast<unsigned char>(name[i + 2])))
+            {
+              out += static_cast<char>(
+                std::stoi(name.substr(i + 1, 2), nullptr, 16));
+              i += 2;
+            }
+          else
+            out += name[i];
+        return out;
+      };
+      std::vector<std::string> found;
+      try
+        {
+          boost::property_tree::ptree tree;
+          if (file.substr(d) == ".xml")
+            boost::property_tree::read_xml(file, tree);
+          else
+            boost::property_tree::read_json(file, tree);
+          const std::function<void(const boost::property_tree::ptree &,
+                                   const std::string &)>
+            walk = [&](const boost::property_tree::ptree &t,
+                       const std::string                 &path) {
+              for (const auto &[key, child] : t)
+                {
+                  if (key == "<xmlattr>" || key == "<xmlcomment>" ||
+                      key == "documentation" || key == "pattern" ||
+                      key == "pattern_description" || key == "default_value")
+                    continue;
+                  const std::string name =
+                    key == "value" || key == "ParameterHandler" ?
+                      path :
+                      (path.empty() ? "" : path + "/") + demangle(key);
+                  if (child.empty())
+                    {
+                      if (Utilities::trim(child.data()) == value &&
+                          !name.empty())
+                        found.push_back("'" + name + "'");
+                    }
+                  else
+                    walk(child, name);
+                }
+            };
+          walk(tree, "");
+        }
+      catch (...)
+        {
+          return message;
+        }
+      if (found.empty())
+        return message;
+      std::string list;
+      for (const auto &f : found)
+        list += (list.empty() ? "" : " or ") + f;
+      return message + " The value is that of " + list + ".";
     }
 
     /// The UTF-8 byte-order mark some Windows editors write at the start
@@ -912,7 +995,8 @@ namespace glide
       }
     catch (const ExceptionBase &e)
       {
-        throw InputError("In scene file '" + filename + "': " + explain(e));
+        throw InputError("In scene file '" + filename +
+                         "': " + name_the_entry(filename, explain(e)));
       }
     catch (const InputError &)
       {
@@ -941,7 +1025,7 @@ namespace glide
     catch (const ExceptionBase &e)
       {
         // A subsection of an object the scene's lists do not name.
-        const std::string message = explain(e);
+        const std::string message = name_the_entry(filename, explain(e));
         const std::string marker =
           "There is no such subsection to be entered: ";
         if (const auto at = message.find(marker); at != std::string::npos)
