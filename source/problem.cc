@@ -28,6 +28,68 @@ namespace glide
 
   namespace
   {
+    /**
+     * Abaqus 2D element types say what the analysis is (CAX, CGAX:
+     * axisymmetric; CPE, CPEG: plane strain; CPS: plane stress); glide
+     * takes it from the scene's 'Analysis type' (doc/mesh-import.md). A
+     * note for each body from a mesh file whose element types say another.
+     */
+    std::vector<std::string>
+    element_type_notes(const Scene &scene)
+    {
+      std::vector<std::string> notes;
+      for (const auto &body : scene.bodies)
+        {
+          if (!body.mesh.imported)
+            continue;
+          std::string axisymmetric, plane, plane_stress;
+          for (std::string type : body.mesh.imported->element_types)
+            {
+              for (auto &c : type)
+                c = std::toupper(static_cast<unsigned char>(c));
+              const auto starts = [&](const char *prefix) {
+                return type.rfind(prefix, 0) == 0;
+              };
+              std::string *list = nullptr;
+              if (starts("CAX") || starts("CGAX"))
+                list = &axisymmetric;
+              else if (starts("CPS"))
+                list = &plane_stress;
+              else if (starts("CPE"))
+                list = &plane;
+              if (list)
+                *list += (list->empty() ? "" : ", ") + type;
+            }
+          const std::string head = "body '" + body.name + "': the mesh file '" +
+                                   body.mesh.imported->file +
+                                   "' has elements of type ";
+          if (scene.analysis == AnalysisType::plane_strain &&
+              !axisymmetric.empty())
+            notes.push_back(
+              head + axisymmetric +
+              ", axisymmetric in Abaqus, but the scene's 'Analysis type' is "
+              "plane strain, which glide uses; set 'Analysis type = "
+              "axisymmetric' for an axisymmetric model (x the radius, y the "
+              "axis).");
+          if (scene.analysis == AnalysisType::plane_strain &&
+              !plane_stress.empty())
+            notes.push_back(
+              head + plane_stress +
+              ", plane stress in Abaqus; glide has no plane stress: the "
+              "results are plane strain (the scene's 'Analysis type').");
+          if (scene.analysis == AnalysisType::axisymmetric &&
+              !(plane + plane_stress).empty())
+            notes.push_back(
+              head + plane +
+              (plane.empty() || plane_stress.empty() ? "" : ", ") +
+              plane_stress +
+              ", plane elements in Abaqus, but the scene's 'Analysis type' "
+              "is axisymmetric, which glide uses (x the radius, y the axis); "
+              "set 'Analysis type = plane strain' for a plane model.");
+        }
+      return notes;
+    }
+
     /// Peak resident memory of this process in MiB, summed over processes
     /// (@p largest: the largest of one process).
     double
@@ -171,6 +233,8 @@ namespace glide
     for (unsigned int i = 0; i < effects.size(); ++i)
       pcout << (i ? "; " : "") << effects[i];
     pcout << std::endl;
+    for (const auto &note : element_type_notes(scene))
+      pcout << "  warning: " << note << std::endl;
   }
 
   template <int dim>

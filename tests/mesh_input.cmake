@@ -88,7 +88,7 @@ glide_error_test(node_set_point_syntax "Node set left/Points': cannot read '0, 5
 # the same geometry from built-in meshes; single bodies from Gmsh 4.1,
 # Abaqus second-order, part/instance and 3D files with balanced reactions;
 # a node set of points separated by ';'.
-foreach(case abaqus_two_bodies_contact gmsh_and_abaqus_bodies_balance node_set_points
+foreach(case abaqus_two_bodies_contact gmsh_and_abaqus_bodies_balance node_set_points element_types_against_the_analysis
              mixed_node_set_and_surface)
   add_test(NAME scene.mesh_import_${case}
     COMMAND ${GLIDE_PYTHON} ${SCENES}/mesh_import_tests.py --glide $<TARGET_FILE:glide> --case ${case})
@@ -111,3 +111,4 @@ glide_mesh_error_test(abaqus_hanging_node_3d bad_hanging_node_3d.inp "[0-9]+: no
 glide_error_test(mesh.gmsh_no_entities "bad_no_entities.msh' \\(format 4.1\\) names physical groups in \\$PhysicalNames but has no \\$Entities section"
   ${ONE_BODY} --set "Body part/Mesh file=${MESH_DATA}/bad_no_entities.msh")
 glide_mesh_error_test(gmsh_entities_after_elements bad_entities_after_elements.msh "[0-9]+: the \\$Entities section comes after \\$Elements")
+glide_mesh_error_test(abaqus_hanging_node_curved bad_hanging_node_curved.inp "[0-9]+: node 7 lies on a side of element 1 but is not one of its nodes")

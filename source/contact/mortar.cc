@@ -616,7 +616,7 @@ namespace glide
                 }
                 // The segment: the master facet's ends projected onto the
                 // slave facet along the slave normal field, cut to [0, 1].
-                T          xa, xb;
+                T          xa = 0., xb = 0.;
                 const Root ra = onto_slave(Y[0], xa);
                 const Root rb = onto_slave(Y[pm], xb);
                 if (ra == Root::not_converged || rb == Root::not_converged)
@@ -624,30 +624,31 @@ namespace glide
                     t.failed = true;
                     continue;
                   }
-                using std::max;
-                using std::min;
-                T lo = max(min(xa, xb), T(0.));
-                T hi = min(max(xa, xb), T(1.));
-                if (ra != Root::found || rb != Root::found)
+                T lo = 0., hi = 0.;
+                if (ra == Root::found && rb == Root::found)
+                  {
+                    using std::max;
+                    using std::min;
+                    lo = max(min(xa, xb), T(0.));
+                    hi = min(max(xa, xb), T(1.));
+                  }
+                else
                   {
                     // A master end whose normal line misses the slave facet
                     // (the slave normals turn fast, or run parallel to the
                     // master): the segment is where the slave normal lines
-                    // hit the master facet, between the breakpoints that
-                    // exist. Each piece is tested at its middle; the pieces
-                    // that hit must be one run.
-                    std::vector<T> cuts{T(0.), T(1.)};
+                    // hit the master facet. [0, 1] is cut at the end
+                    // projection that exists (if any, and inside), and each
+                    // piece is kept if the normal line at its middle hits
+                    // the master facet; with at most two pieces, those kept
+                    // are adjacent.
+                    std::vector<T> cuts{T(0.)};
                     for (const auto &[r, x] :
                          {std::make_pair(ra, &xa), std::make_pair(rb, &xb)})
                       if (r == Root::found && plain(*x) > 0. && plain(*x) < 1.)
                         cuts.push_back(*x);
-                    std::sort(cuts.begin(),
-                              cuts.end(),
-                              [](const T &u, const T &v) {
-                                return plain(u) < plain(v);
-                              });
-                    int  first = -1, last = -1;
-                    bool split = false;
+                    cuts.push_back(T(1.));
+                    int first = -1, last = -1;
                     for (unsigned int k = 0; k + 1 < cuts.size(); ++k)
                       {
                         double     eta;
@@ -659,14 +660,10 @@ namespace glide
                           {
                             if (first < 0)
                               first = k;
-                            else if (last != static_cast<int>(k) - 1)
-                              split = true;
                             last = k;
                           }
                       }
-                    if (split)
-                      t.failed = true;
-                    if (first < 0 || split)
+                    if (first < 0)
                       continue;
                     lo = cuts[first];
                     hi = cuts[last + 1];

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <sstream>
 
 namespace glide
@@ -218,8 +219,11 @@ namespace glide
 
     // Every cell must be one glide can read faithfully.
     for (const auto c : selected)
-      if (!content.cells[c].problem.empty())
-        throw InputError(content.cells[c].problem);
+      {
+        if (!content.cells[c].problem.empty())
+          throw InputError(content.cells[c].problem);
+        mesh.element_types.insert(content.cells[c].type);
+      }
 
     // Vertices: the corner nodes of the body's cells.
     std::map<long, unsigned int> vertex_of;
@@ -340,15 +344,32 @@ namespace glide
     // separate parts (a mesh file may hold several) share no corner and are
     // left alone.
     {
+      std::vector<long> node_of(mesh.vertices.size());
+      for (const auto &[n, v] : vertex_of)
+        node_of[v] = n;
+      const auto not_conforming = [&](const unsigned int v,
+                                      const FaceUse     &use) {
+        const auto &cell = content.cells[selected[use.cell]];
+        throw InputError(
+          file_line(content.file, cell.line) + ": node " +
+          std::to_string(node_of[v]) + " lies on a " +
+          (dim == 2 ? "side" : "face") + " of element " +
+          std::to_string(cell.id) +
+          " but is not one of its nodes: the mesh is not conforming there (a "
+          "hanging node), and the body would be cut open along that " +
+          (dim == 2 ? "side" : "face") +
+          ". Mesh the body so that neighbouring elements share whole " +
+          (dim == 2 ? "sides" : "faces") +
+          " (in Gmsh: one mesh of the whole body, its regions sharing their "
+          "boundary curves and surfaces), or put the two sides in separate "
+          "element sets as two bodies in contact.");
+      };
       std::map<unsigned int, std::vector<const std::vector<unsigned int> *>>
         boundary_at;
       for (const auto &[k, use] : faces)
         if (use.uses == 1)
           for (const auto v : k)
             boundary_at[v].push_back(&k);
-      std::vector<long> node_of(mesh.vertices.size());
-      for (const auto &[n, v] : vertex_of)
-        node_of[v] = n;
       for (const auto &[k, use] : faces)
         if (use.uses == 1)
           {
@@ -360,26 +381,79 @@ namespace glide
                 for (const auto v : *other)
                   if (!std::binary_search(k.begin(), k.end(), v) &&
                       inside_face(mesh.vertices[v], x))
-                    {
-                      const auto &cell = content.cells[selected[use.cell]];
-                      throw InputError(
-                        file_line(content.file, cell.line) + ": node " +
-                        std::to_string(node_of[v]) + " lies on a " +
-                        (dim == 2 ? "side" : "face") + " of element " +
-                        std::to_string(cell.id) +
-                        " but is not one of its nodes: the mesh is not "
-                        "conforming there (a hanging node), and the body "
-                        "would be cut open along that " +
-                        (dim == 2 ? "side" : "face") +
-                        ". Mesh the body so that neighbouring elements "
-                        "share whole " +
-                        (dim == 2 ? "sides" : "faces") +
-                        " (in Gmsh: one mesh of the whole body, its regions "
-                        "sharing their boundary curves and surfaces), or put "
-                        "the two sides in separate element sets as two "
-                        "bodies in contact.");
-                    }
+                    not_conforming(v, use);
           }
+
+      // 2D, where the neighbours' sides are not straight continuations of
+      // each other (a curved interface): the boundary sides, each directed
+      // with its cell on the left, run round the body counterclockwise and
+      // round a hole clockwise. From a side's end, at most 8 sides lead
+      // back to its start round a hole of (almost) no area: a sliver
+      // between a coarse side and the finer sides of the neighbour that
+      // hangs on it. A real hole of that few sides has an area of at least
+      // 2 % of its perimeter squared (a slot ten times as long as wide).
+      if (dim == 2)
+        {
+          std::map<unsigned int, std::vector<unsigned int>> next;
+          std::vector<std::pair<std::array<unsigned int, 2>, const FaceUse *>>
+            sides;
+          for (const auto &[k, use] : faces)
+            if (use.uses == 1)
+              {
+                std::array<unsigned int, 2> e{
+                  {mesh.cells[use.cell][cell_faces(2)[use.face][0]],
+                   mesh.cells[use.cell][cell_faces(2)[use.face][1]]}};
+                std::array<double, 2> c{{0., 0.}};
+                for (const auto v : mesh.cells[use.cell])
+                  for (unsigned int d = 0; d < 2; ++d)
+                    c[d] += 0.25 * mesh.vertices[v][d];
+                const auto &p = mesh.vertices[e[0]], &q = mesh.vertices[e[1]];
+                if ((q[0] - p[0]) * (c[1] - p[1]) -
+                      (q[1] - p[1]) * (c[0] - p[0]) <
+                    0)
+                  std::swap(e[0], e[1]);
+                next[e[0]].push_back(e[1]);
+                sides.emplace_back(e, &use);
+              }
+          // Every way from the side's end back to its start in at most 8
+          // sides (a vertex where the boundary touches itself, such as a
+          // corner of the sliver on the body's outside, has several).
+          for (const auto &[e, use] : sides)
+            {
+              std::vector<unsigned int>   loop{e[0], e[1]};
+              const std::function<void()> search = [&]() {
+                const unsigned int v = loop.back();
+                if (v == e[0])
+                  {
+                    if (loop.size() < 4)
+                      return;
+                    double area = 0, perimeter = 0;
+                    for (std::size_t i = 0; i + 1 < loop.size(); ++i)
+                      {
+                        const auto &p = mesh.vertices[loop[i]],
+                                   &q = mesh.vertices[loop[i + 1]];
+                        area += 0.5 * (p[0] * q[1] - q[0] * p[1]);
+                        perimeter += std::hypot(q[0] - p[0], q[1] - p[1]);
+                      }
+                    if (std::abs(area) < 0.02 * perimeter * perimeter &&
+                        (area < 0 ||
+                         std::abs(area) < 1e-10 * perimeter * perimeter))
+                      not_conforming(loop[2], *use);
+                    return;
+                  }
+                const auto it = next.find(v);
+                if (loop.size() > 9 || it == next.end())
+                  return;
+                for (const auto w : it->second)
+                  {
+                    loop.push_back(w);
+                    search();
+                    loop.pop_back();
+                  }
+              };
+              search();
+            }
+        }
     }
 
     // Surfaces: faces of the body's boundary.

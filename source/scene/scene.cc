@@ -41,15 +41,21 @@ namespace glide
       std::istringstream in(s.str());
       while (in >> word)
         text += (text.empty() ? "" : " ") + word;
-      if (text.find("statement, but the given file to include") !=
-          std::string::npos)
+      const std::string include = "the given file to include <";
+      if (const auto at = text.find(include); at != std::string::npos)
         {
+          const auto        from = at + include.size();
+          const std::string name =
+            text.substr(from, text.find('>', from) - from);
           std::error_code ec;
-          text += " deal.II opens 'include' files relative to the current "
-                  "directory (" +
-                  std::filesystem::current_path(ec).string() +
-                  "), not to the file that includes them: write the path "
-                  "from there, or an absolute path.";
+          if (!name.empty() && name[0] == '/')
+            text += " Check that it exists and can be read.";
+          else
+            text += " deal.II opens 'include' files relative to the current "
+                    "directory (" +
+                    std::filesystem::current_path(ec).string() +
+                    "), not to the file that includes them: write the path "
+                    "from there, or an absolute path.";
         }
       if (text.find("Can't convert the parameter value") != std::string::npos &&
           text.find("to a double") != std::string::npos)
@@ -57,9 +63,26 @@ namespace glide
           if (!text.empty() && text.back() == '.')
             text.pop_back();
           text += " (not a number, or beyond double precision: its "
-                  "magnitude must lie between 1e-308 and 1e308, or be 0).";
+                  "magnitude must lie between about 2.3e-308 and 1.7e308, "
+                  "or be 0).";
         }
       return text;
+    }
+
+    /// The format of a scene file as deal.II's ParameterHandler decides it:
+    /// by its extension, in any case ("prm", "xml", "json"; empty for
+    /// another, which deal.II refuses).
+    std::string
+    scene_format(const std::string &file)
+    {
+      const std::string extension =
+        std::filesystem::path(file).extension().string();
+      std::string lower;
+      for (const char c : extension)
+        lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      if (lower == ".prm" || lower == ".xml" || lower == ".json")
+        return lower.substr(1);
+      return "";
     }
 
     /// deal.II's message for a value of an XML or JSON scene that does not
@@ -69,18 +92,19 @@ namespace glide
     name_the_entry(const std::string &file, const std::string &message)
     {
       const std::string head = "The string <", tail = "> does not match";
-      const auto        a = message.find(head);
-      const auto        b = message.find(tail);
-      const auto        d = file.rfind('.');
+      const auto        a      = message.find(head);
+      const auto        b      = message.find(tail);
+      const std::string format = scene_format(file);
       if (a == std::string::npos || b == std::string::npos || b < a ||
-          d == std::string::npos ||
-          (file.substr(d) != ".xml" && file.substr(d) != ".json"))
+          (format != "xml" && format != "json"))
         return message;
       const std::string value =
         message.substr(a + head.size(), b - a - head.size());
-      // deal.II writes names with characters other than letters and
-      // digits as _XX (hex); it reads both forms.
-      const auto demangle = [](const std::string &name) {
+      // deal.II writes the names of an XML file with characters other than
+      // letters and digits as _XX (hex); JSON names are plain.
+      const auto demangle = [&](const std::string &name) {
+        if (format != "xml")
+          return name;
         std::string out;
         for (std::size_t i = 0; i < name.size(); ++i)
           if (name[i] == '_' && i + 2 < name.size() &&
@@ -99,7 +123,7 @@ namespace glide
       try
         {
           boost::property_tree::ptree tree;
-          if (file.substr(d) == ".xml")
+          if (format == "xml")
             boost::property_tree::read_xml(file, tree);
           else
             boost::property_tree::read_json(file, tree);
@@ -188,6 +212,8 @@ namespace glide
           // The scene file's own mark is skipped (Scene::read()); deal.II
           // reads included files itself and would stop at the mark with
           // a message about a line that looks right.
+          if (first && chain.size() == 1 && line.rfind(byte_order_mark, 0) == 0)
+            line.erase(0, 3);
           if (first && chain.size() > 1 && line.rfind(byte_order_mark, 0) == 0)
             throw InputError(
               "The scene file '" + file + "' (included by '" +
@@ -944,9 +970,8 @@ namespace glide
         }
     };
 
-    if (const auto d = filename.rfind('.');
-        d == std::string::npos ||
-        (filename.substr(d) != ".xml" && filename.substr(d) != ".json"))
+    const bool prm_file = scene_format(filename) == "prm";
+    if (prm_file)
       {
         std::vector<std::pair<std::string, std::string>> chain;
         check_includes(filename, chain);
@@ -955,11 +980,6 @@ namespace glide
     // A .prm file is parsed from its text, without a UTF-8 byte-order mark
     // at its start (deal.II took the mark for part of the first line and
     // refused a line that looks right).
-    const bool prm_file = [&] {
-      const auto d = filename.rfind('.');
-      return d == std::string::npos ||
-             (filename.substr(d) != ".xml" && filename.substr(d) != ".json");
-    }();
     std::string text;
     if (prm_file)
       {
@@ -1038,8 +1058,15 @@ namespace glide
                     {"Boundary condition ", "Boundary conditions", &conditions},
                     {"Node set ", "Node sets", &node_sets},
                     {"Contact pair ", "Contact pairs", &pairs}};
+            // Only a name at the object's own level (a nested
+            // subsection's path has a '.', which glide's names cannot
+            // contain) that the list does not hold.
             for (const auto &[prefix, list, names] : kinds)
-              if (subsection.rfind(prefix, 0) == 0)
+              if (subsection.rfind(prefix, 0) == 0 &&
+                  subsection.find('.') == std::string::npos &&
+                  std::find(names->begin(),
+                            names->end(),
+                            subsection.substr(prefix.size())) == names->end())
                 {
                   std::string listed;
                   for (const auto &n : *names)

@@ -99,6 +99,31 @@ def case_gmsh_and_abaqus_bodies_balance():
     close(rows[-1]["reaction_hold_z"], 2., 1e-9, "box41.msh: the support carries the pressure on 'top'")
 
 
+def case_element_types_against_the_analysis():
+    """Abaqus 2D element types say what the analysis is (CAX: axisymmetric,
+    CPE: plane strain, CPS: plane stress); glide takes it from the scene's
+    'Analysis type' (doc/mesh-import.md) and warns where they disagree:
+    - cax4r.inp (CAX4R) in a plane-strain scene: a warning that names the
+      type and the parameter; with 'Analysis type = axisymmetric', none;
+    - two_quads.inp (CPE4) in an axisymmetric scene: a warning.
+    Each run is held on the rest of the boundary and loaded on the top, and
+    finishes (a warning, not an error)."""
+    loads = ("Boundary conditions=hold, load", "Boundary condition hold/Surface=part.unnamed",
+             "Boundary condition load/Type=traction", "Boundary condition load/Function=0; -t")
+    rows, log, _ = one_body("cax4r.inp", *loads, "Boundary condition load/Surface=part.TOP", name="cax-plane")
+    check("warning: body 'part': the mesh file" in log and "has elements of type CAX4R, axisymmetric in Abaqus, "
+          "but the scene's 'Analysis type' is plane strain" in log, "CAX4R in plane strain: warned")
+    check(len(rows) > 0, "the plane-strain run finishes")
+    rows, log, _ = one_body("cax4r.inp", *loads, "Boundary condition load/Surface=part.TOP",
+                            "Analysis type=axisymmetric", name="cax-axi")
+    check("warning: body" not in log, "CAX4R in an axisymmetric scene: no warning")
+    check(len(rows) > 0, "the axisymmetric run finishes")
+    rows, log, _ = one_body(os.path.join("..", "two_quads.inp"), *loads, "Boundary condition load/Surface=part.SS2",
+                            "Analysis type=axisymmetric", name="cpe-axi")
+    check("has elements of type CPE4, plane elements in Abaqus, but the scene's 'Analysis type' is axisymmetric"
+          in log, "CPE4 in an axisymmetric scene: warned")
+
+
 def case_node_set_points():
     """Issue 13: 'set Points = 0, 10;0, 5' (points separated by ';' without
     a blank) is a node set of two vertices of the 10 x 10 block; a force

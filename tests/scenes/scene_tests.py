@@ -1208,6 +1208,7 @@ def case_scene_file_with_a_byte_order_mark():
     for a, b in zip(rows, reference):
         close(a["contact_interface_normal_force"], b["contact_interface_normal_force"], 1e-14,
               f"step {int(a['step'])}: same contact force")
+    shutil.rmtree(directory, ignore_errors=True)
 
 
 def case_mortar_normals_missing_the_master():

@@ -107,6 +107,9 @@ namespace glide
     std::map<std::string, std::string> unavailable;
     /// The smallest edge length (for tolerances).
     double smallest_edge = 0.;
+    /// The element types of the body's cells as the file names them
+    /// (Abaqus: CPE4R, CAX4, ...; Gmsh: "4-node quadrilateral").
+    std::set<std::string> element_types;
   };
 
   /**
