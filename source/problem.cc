@@ -29,19 +29,22 @@ namespace glide
   namespace
   {
     /**
-     * Abaqus 2D element types say what the analysis is (CAX, CGAX:
-     * axisymmetric; CPE, CPEG: plane strain; CPS: plane stress); glide
-     * takes it from the scene's 'Analysis type' (doc/mesh-import.md). A
-     * note for each body from a mesh file whose element types say another.
+     * Warnings about the bodies from mesh files: the reader's (duplicate
+     * nodes), and element types that say another analysis than the
+     * scene's. Abaqus 2D element types say what the analysis is (CAX,
+     * CGAX: axisymmetric; CPE, CPEG: plane strain; CPS: plane stress);
+     * glide takes it from the scene's 'Analysis type' (doc/mesh-import.md).
      */
     std::vector<std::string>
-    element_type_notes(const Scene &scene)
+    mesh_notes(const Scene &scene)
     {
       std::vector<std::string> notes;
       for (const auto &body : scene.bodies)
         {
           if (!body.mesh.imported)
             continue;
+          for (const auto &note : body.mesh.imported->notes)
+            notes.push_back("body '" + body.name + "': " + note);
           std::string axisymmetric, plane, plane_stress;
           for (std::string type : body.mesh.imported->element_types)
             {
@@ -233,7 +236,7 @@ namespace glide
     for (unsigned int i = 0; i < effects.size(); ++i)
       pcout << (i ? "; " : "") << effects[i];
     pcout << std::endl;
-    for (const auto &note : element_type_notes(scene))
+    for (const auto &note : mesh_notes(scene))
       pcout << "  warning: " << note << std::endl;
   }
 

@@ -124,6 +124,27 @@ def case_element_types_against_the_analysis():
           in log, "CPE4 in an axisymmetric scene: warned")
 
 
+def case_duplicate_nodes_warned():
+    """Duplicate nodes (two nodes of one body at one place, e.g. regions
+    meshed apart without merging their nodes) leave the elements on either
+    side unconnected; it may be meant (a crack, two parts in contact), so
+    the log warns, naming the nodes and what to do.
+    duplicate_nodes.inp: two quadrilaterals whose shared side has its nodes
+    twice, each held at its bottom and pressed on its top: the log names 2
+    pairs and nodes 2 and 7; two_quads.inp (the same cells with shared
+    nodes): no warning. The pressed parts carry the load either way."""
+    sets = ("Boundary conditions=hold, load", "Boundary condition load/Type=traction",
+            "Boundary condition load/Function=0; -t")
+    rows, log, _ = one_body("duplicate_nodes.inp", *sets, "Boundary condition hold/Surface=part.BOTTOM",
+                            "Boundary condition load/Surface=part.TOP", name="duplicates")
+    check("warning: body 'part': 2 pair(s) of nodes of the mesh file" in log and "(nodes 2 and 7 at (1, 0))" in log
+          and "Coherence Mesh" in log, "duplicate nodes: warned with the nodes and what to do")
+    close(rows[-1]["reaction_hold_y"], 2., 1e-9, "duplicate nodes: the supports carry the traction")
+    rows, log, _ = one_body(os.path.join("..", "two_quads.inp"), *sets, "Boundary condition hold/Surface=part.unnamed",
+                            "Boundary condition load/Surface=part.SS2", name="shared")
+    check("lie at the same place" not in log, "shared nodes: no warning")
+
+
 def case_node_set_points():
     """Issue 13: 'set Points = 0, 10;0, 5' (points separated by ';' without
     a blank) is a node set of two vertices of the 10 x 10 block; a force

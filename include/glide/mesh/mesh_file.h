@@ -110,6 +110,8 @@ namespace glide
     /// The element types of the body's cells as the file names them
     /// (Abaqus: CPE4R, CAX4, ...; Gmsh: "4-node quadrilateral").
     std::set<std::string> element_types;
+    /// Warnings about the body's mesh for the log (duplicate nodes).
+    std::vector<std::string> notes;
   };
 
   /**
