@@ -10,7 +10,6 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
-#include <numeric>
 #include <sstream>
 
 namespace glide
@@ -462,14 +461,7 @@ namespace glide
     // merging their nodes); the parts meet only through a contact pair.
     // Legitimate for a crack or two parts in contact, so a warning.
     {
-      std::vector<unsigned int> order(mesh.vertices.size());
-      std::iota(order.begin(), order.end(), 0u);
-      std::sort(order.begin(),
-                order.end(),
-                [&](unsigned int a, unsigned int b) {
-                  return mesh.vertices[a] < mesh.vertices[b];
-                });
-      std::array<double, 3> lower = mesh.vertices[order.front()], upper = lower;
+      std::array<double, 3> lower = mesh.vertices.front(), upper = lower;
       for (const auto &x : mesh.vertices)
         for (unsigned int d = 0; d < 3; ++d)
           {
@@ -479,36 +471,37 @@ namespace glide
       double size = 0;
       for (unsigned int d = 0; d < 3; ++d)
         size = std::max(size, upper[d] - lower[d]);
-      const double      tolerance = 1e-10 * size;
+      // Positions rounded to 1e-10 of the body's size (a pair that
+      // straddles a rounding boundary is missed; duplicates written by a
+      // mesher are bitwise equal).
+      const double      grid = 1e-10 * size;
       std::vector<long> node_of(mesh.vertices.size());
       for (const auto &[n, v] : vertex_of)
         node_of[v] = n;
-      unsigned int count = 0;
-      std::string  example;
-      for (std::size_t i = 0; i < order.size(); ++i)
-        for (std::size_t j = i + 1;
-             j < order.size() &&
-             mesh.vertices[order[j]][0] - mesh.vertices[order[i]][0] <=
-               tolerance;
-             ++j)
-          {
-            const auto &x = mesh.vertices[order[i]],
-                       &y = mesh.vertices[order[j]];
-            if (std::abs(x[1] - y[1]) <= tolerance &&
-                std::abs(x[2] - y[2]) <= tolerance)
-              {
-                if (count++ == 0)
-                  {
-                    std::ostringstream s;
-                    s << "nodes " << node_of[order[i]] << " and "
-                      << node_of[order[j]] << " at (" << x[0] << ", " << x[1];
-                    if (dim == 3)
-                      s << ", " << x[2];
-                    s << ")";
-                    example = s.str();
-                  }
-              }
-          }
+      std::map<std::array<long long, 3>, unsigned int> at;
+      unsigned int                                     count = 0;
+      std::string                                      example;
+      for (unsigned int v = 0; v < mesh.vertices.size(); ++v)
+        {
+          std::array<long long, 3> key;
+          for (unsigned int d = 0; d < 3; ++d)
+            key[d] = std::llround((mesh.vertices[v][d] - lower[d]) / grid);
+          const auto [it, added] = at.emplace(key, v);
+          if (added)
+            continue;
+          if (count++ == 0)
+            {
+              const auto        &x = mesh.vertices[v];
+              std::ostringstream s;
+              s << "nodes " << std::min(node_of[it->second], node_of[v])
+                << " and " << std::max(node_of[it->second], node_of[v])
+                << " at (" << x[0] << ", " << x[1];
+              if (dim == 3)
+                s << ", " << x[2];
+              s << ")";
+              example = s.str();
+            }
+        }
       if (count > 0)
         mesh.notes.push_back(
           std::to_string(count) + " pair(s) of nodes of the mesh file '" +
