@@ -760,7 +760,14 @@ namespace glide
                 << " slave node(s) within 1 % of their facet size of the "
                    "master start closed (their pair carried no force yet)"
                 << std::endl;
-        const auto result = solve_step(U_trial);
+        auto result = solve_step(U_trial);
+        if (result.converged && contact.active())
+          if (auto why = contact.passed_through(U, U_trial, t_old, t);
+              !why.empty())
+            {
+              result.converged = false;
+              result.message   = std::move(why);
+            }
         if (!result.converged)
           {
             pcout << "  step failed: " << result.message << std::endl;

@@ -758,9 +758,53 @@ namespace glide
     pair.formulation->move(U);
     std::vector<Constraint<dim>> s;
     s.reserve(pair.nodes.size());
+    typename Formulation<dim>::Linearization l;
+    l.derivatives = false;
     for (unsigned int i = 0; i < pair.nodes.size(); ++i)
-      s.push_back(pair.formulation->evaluate(i, U));
+      {
+        s.push_back(pair.formulation->evaluate(i, U));
+        if (s.back().found() && has_prescribed_dof(pair.nodes[i]))
+          {
+            pair.formulation->linearize(i, s.back(), U, l);
+            mark_prescribed(s.back(), l);
+          }
+      }
     return s;
+  }
+
+  template <int dim>
+  bool
+  Contact<dim>::has_prescribed_dof(const SlaveNode<dim> &node) const
+  {
+    const auto &c = elasticity.update_constraints();
+    return std::any_of(node.dofs.begin(),
+                       node.dofs.end(),
+                       [&c](const types::global_dof_index dof) {
+                         const auto *line = c.get_constraint_entries(dof);
+                         return line != nullptr && line->empty();
+                       });
+  }
+
+  template <int dim>
+  void
+  Contact<dim>::mark_prescribed(
+    Constraint<dim>                                &s,
+    const typename Formulation<dim>::Linearization &l) const
+  {
+    // A Dirichlet line has no entries (hanging nodes have theirs, resolved
+    // to unconstrained DoFs by close()).
+    const auto &c   = elasticity.update_constraints();
+    double      all = 0., free = 0.;
+    for (unsigned int a = 0; a < l.dofs.size(); ++a)
+      {
+        const double g2 = l.force(a) * l.force(a);
+        all += g2;
+        const auto *line = c.get_constraint_entries(l.dofs[a]);
+        if (line == nullptr || !line->empty())
+          free += g2;
+      }
+    if (all > 0. && free <= 1e-12 * all)
+      s.outcome = Outcome::prescribed;
   }
 
   template <int dim>
@@ -966,7 +1010,11 @@ namespace glide
               {
                 s = formulation.evaluate(i, U);
                 if (s.found())
-                  formulation.linearize(i, s, U, l);
+                  {
+                    formulation.linearize(i, s, U, l);
+                    if (has_prescribed_dof(node))
+                      mark_prescribed(s, l);
+                  }
               }
             catch (const std::exception &e)
               {
@@ -1066,7 +1114,8 @@ namespace glide
         // beyond the end of the master (open by definition), nodes without
         // an anchor (small sliding), nodes held on one facet, constraints
         // that fell back to a simpler formulation.
-        unsigned int   active = 0, failed = 0, beyond = 0, unanchored = 0;
+        unsigned int active = 0, failed = 0, beyond = 0, unanchored = 0,
+                     prescribed     = 0;
         unsigned int   incomplete   = 0;
         double         normal_force = 0, penetration = 0;
         Tensor<1, dim> force;
@@ -1079,6 +1128,7 @@ namespace glide
             incomplete += s[i].found() && s[i].projection.incomplete ? 1 : 0;
             beyond += s[i].outcome == Outcome::beyond_end ? 1 : 0;
             unanchored += s[i].outcome == Outcome::unanchored ? 1 : 0;
+            prescribed += s[i].outcome == Outcome::prescribed ? 1 : 0;
             normal_force += f[i].lambda;
             force += f[i].lambda * s[i].normal;
             if (s[i].found())
@@ -1136,10 +1186,59 @@ namespace glide
         count("projection_incomplete", incomplete);
         count("beyond_end", beyond);
         count("unanchored", unanchored);
+        count("prescribed", prescribed);
         count("held", pair.formulation->n_held());
         count("fallbacks", pair.formulation->n_fallbacks());
       }
     return row;
+  }
+
+  template <int dim>
+  std::string
+  Contact<dim>::passed_through(const VectorType &U_old,
+                               const VectorType &U_new,
+                               const double      t_old,
+                               const double      t_new) const
+  {
+    std::string why;
+    for (const auto &pair : pairs)
+      {
+        const auto *master = pair.formulation->rigid_master();
+        if (master == nullptr)
+          continue;
+        unsigned int n       = 0;
+        double       deepest = 0.; // relative to the node's facet size
+        for (const auto &node : pair.nodes)
+          {
+            Point<dim> x_old = node.X, x_new = node.X;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                x_old[d] += U_old[node.dofs[d]];
+                x_new[d] += U_new[node.dofs[d]];
+              }
+            const double depth =
+              master->passage_depth(x_old, t_old, x_new, t_new, 1e-6 * node.size);
+            if (depth > node.size)
+              {
+                ++n;
+                deepest = std::max(deepest, depth / node.size);
+              }
+          }
+        n       = Utilities::MPI::sum(n, comm);
+        deepest = Utilities::MPI::max(deepest, comm);
+        if (n > 0 && why.empty())
+          {
+            std::ostringstream text;
+            text << "the rigid master of contact pair '"
+                 << pair.parameters->name << "' passed through " << n
+                 << " slave node(s) within the increment (open before and "
+                    "after it, their paths relative to the master run up to "
+                 << std::setprecision(3) << deepest
+                 << " slave facet sizes deep through it)";
+            why = text.str();
+          }
+      }
+    return why;
   }
 
   template <int dim>
@@ -1157,6 +1256,28 @@ namespace glide
         for (const auto &x : f)
           closed.push_back(x.closed);
         finer_master_facets(pair, s, closed);
+        if (!pair.prescribed_said)
+          {
+            std::vector<std::string> list;
+            for (unsigned int i = 0; i < s.size(); ++i)
+              if (s[i].outcome == Outcome::prescribed)
+                {
+                  std::ostringstream text;
+                  text << "(" << pair.nodes[i].X << ")";
+                  list.push_back(text.str());
+                }
+            pair.prescribed_said = Utilities::MPI::sum(list.size(), comm) > 0;
+            report(list,
+                   "warning: contact pair '" + pair.parameters->name +
+                     "': a boundary condition prescribes the motion along "
+                     "the contact normal of ",
+                   " slave node(s), so contact is not enforced there and "
+                   "the condition's reaction carries their share of the "
+                   "contact force (counted in statistics.csv as "
+                   "'prescribed'); take them out of the condition or out "
+                   "of the slave surface if contact should hold them (node "
+                   "positions in the reference configuration)");
+          }
         pair.formulation->commit_step(U, s, closed, t_old, t_new);
       }
   }

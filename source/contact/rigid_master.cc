@@ -6,6 +6,7 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/lac/vector.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -191,6 +192,39 @@ namespace glide
     p.curvature                     = sign * tangential;
     p.closest_point                 = x - (r - radius) * e;
     return p;
+  }
+
+  template <int dim>
+  double
+  RigidMaster<dim>::passage_depth(const Point<dim> &x_old,
+                                  const double      t_old,
+                                  const Point<dim> &x_new,
+                                  const double      t_new,
+                                  const double      clearance) const
+  {
+    if (type == MasterType::rigid_plane || inside)
+      return 0.;
+    // Both points in the reference frame, relative to the reference centre
+    // (a cylinder's reference axis is z).
+    const auto relative = [&](const Point<dim> &x, const double t) {
+      const auto [u, theta] = motion(t);
+      Tensor<1, dim> d =
+        rotate<dim>(x - rotation_center - u, axis, -theta) +
+        (rotation_center - reference_point);
+      if (dim == 3 && type == MasterType::rigid_circle)
+        d[dim - 1] = 0.;
+      return d;
+    };
+    const Tensor<1, dim> a = relative(x_old, t_old);
+    const Tensor<1, dim> b = relative(x_new, t_new);
+    if (!(a.norm() > radius + clearance && b.norm() > radius + clearance))
+      return 0.;
+    const Tensor<1, dim> ab = b - a;
+    const double         s =
+      ab.norm_square() > 0. ?
+                std::clamp(-(a * ab) / ab.norm_square(), 0., 1.) :
+                0.;
+    return std::max(0., radius - (a + s * ab).norm());
   }
 
   template class RigidMaster<2>;

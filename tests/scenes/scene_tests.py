@@ -1211,6 +1211,82 @@ def case_scene_file_with_a_byte_order_mark():
     shutil.rmtree(directory, ignore_errors=True)
 
 
+def case_slave_node_held_by_a_condition():
+    """A slave node that a boundary condition holds along the contact
+    normal (R16.3, R10): parameters/hertz-2d.prm with the cylinder's lowest
+    node, which touches the rigid flat, held by YSYMM or fixed. The contact
+    constraint there acts on no free DoF, so its multiplier row was empty:
+    until 2026-12-06 MUMPS failed on every attempt (about 70 lines of its
+    errors) and the run ended after six cut-backs. Now the node is taken out
+    of contact (statistics 'prescribed' = 1, a warning naming it) and the
+    condition's reaction carries its share: the load (1e-3) is balanced by
+    the contact force and that reaction to 1e-9, without cut-back. Held
+    across the normal (XSYMM) the node stays in contact ('prescribed' 0),
+    and so do the nodes of corner.prm that the push prescribes against
+    deformable masters (the masters can move)."""
+    directory = tempfile.mkdtemp(prefix="glide-held-slave-")
+    for kind, expect in (("YSYMM", 1), ("fixed", 1), ("XSYMM", 0)):
+        prm = os.path.join(directory, f"held_{kind}.prm")
+        with open(prm, "w") as f:
+            f.write(f"""include {scene_file("hertz-2d.prm")}
+set Node sets = top_center, bottom
+set Boundary conditions = load, center, pin
+subsection Node set bottom
+  set Points = 0, 0
+end
+subsection Boundary condition pin
+  set Surface = bottom
+  set Type    = {kind}
+end
+""")
+        rows, log, _ = run(prm, "Output/Write VTU=false", "Body cylinder/Refinement/Local refinements=5",
+                           name=f"held_{kind}")
+        check(rows and rows[-1]["cut_backs"] == 0 and rows[-1]["load_factor"] == 1,
+              f"{kind}: runs to the end without cut-back")
+        check(all(r["contact_hertz_prescribed"] == expect for r in rows),
+              f"{kind}: 'prescribed' is {expect} in every step: {[r['contact_hertz_prescribed'] for r in rows]}")
+        named = "prescribes the motion along the contact normal of 1 slave node(s)" in log
+        check(named == (expect == 1), f"{kind}: the warning {'names' if expect else 'does not name'} the node")
+        last = rows[-1]
+        close(last["contact_hertz_force_y"] + last["reaction_pin_y"], 1e-3, 1e-9,
+              f"{kind}: contact force and the condition's reaction balance the load")
+        if expect:
+            check(last["reaction_pin_y"] > 1e-3 * 1e-3, f"{kind}: the condition carries a share: {last['reaction_pin_y']:.3g}")
+    rows, _, _ = run(scene_file("corner.prm"), "Output/Write VTU=false", name="corner")
+    check(all(r[f"contact_{p}_prescribed"] == 0 for r in rows for p in ("floor", "wall")),
+          "corner.prm: the pushed slave nodes stay in contact with the deformable masters")
+    shutil.rmtree(directory, ignore_errors=True)
+
+
+def case_rigid_master_passing_through():
+    """A rigid master that passes through the slave within one increment
+    (R16.3): parameters/rigid-punch.prm with the circle 0.5 above the
+    block, moved down by 4 (through the block, 1 thick, to below it) in
+    one step. At the end of that increment every slave node is outside the
+    circle again: until 2026-12-06 the step converged with 0 active nodes,
+    0 force and no word. Now the step fails with "passed through" and is
+    cut back, so that the circle meets the block; the run then carries a
+    contact force (linear elasticity lets the block be pressed that far).
+    A circle pressed 0.02 deep (a third of a slave facet) into the block
+    and slid by 3 over it in 4 steps is not a passage: the nodes it sweeps
+    dip into it by less than their facet size; no cut-back."""
+    base = ["Output/Write VTU=false", "Contact pair punch/Rigid master/Point=0, 1.5"]
+    rows, log, _ = run(scene_file("rigid-punch.prm"), *base, "Contact pair punch/Rigid master/Translation=0; -4*t",
+                       "Load stepping/Number of steps=1", name="through")
+    check("passed through" in log and "slave node(s) within the increment" in log,
+          "the passage is named in the log")
+    check(rows and rows[-1]["load_factor"] == 1 and rows[0]["cut_backs"] >= 1,
+          f"the first step was cut back ({rows[0]['cut_backs'] if rows else None} cut-backs)")
+    check(all(r["contact_punch_active"] > 0 and r["contact_punch_force_y"] < 0 for r in rows),
+          f"every converged step carries a contact force: {[r['contact_punch_force_y'] for r in rows]}")
+    rows, log, _ = run(scene_file("rigid-punch.prm"), "Output/Write VTU=false",
+                       "Contact pair punch/Rigid master/Point=-1.5, 0.98",
+                       "Contact pair punch/Rigid master/Translation=3*t; 0",
+                       "Load stepping/Number of steps=4", name="sliding")
+    check("passed through" not in log and rows and rows[-1]["cut_backs"] == 0 and rows[-1]["load_factor"] == 1,
+          "a circle sliding over the block at a shallow depth runs without cut-back")
+
+
 def case_mortar_normals_missing_the_master():
     """Mortar in an inner corner (R14, R16.3): parameters/corner.prm with
     both pairs mortar. The square's left side is slave of the floor pair

@@ -197,6 +197,24 @@ namespace glide
     std::vector<std::pair<std::string, std::string>>
     statistics(const VectorType &U) const;
 
+    /**
+     * Collective: why the converged step from @p U_old at load factor
+     * @p t_old to @p U_new at @p t_new is not the scene's answer, or empty.
+     * A rigid circle, cylinder or sphere that passed through slave nodes
+     * within the increment leaves them open at both ends, with no force
+     * and no warning: a node whose straight path relative to the master
+     * goes deeper into it than its slave facet size (a node sliding round
+     * the master at a small gap dips in by the sagitta of its path only)
+     * makes the step fail, and the load stepper cuts it back
+     * (RigidMaster::passage_depth()). Masters that are meshed surfaces are
+     * not checked.
+     */
+    std::string
+    passed_through(const VectorType &U_old,
+                   const VectorType &U_new,
+                   const double      t_old,
+                   const double      t_new) const;
+
     /// After a converged step from load factor @p t_old to @p t_new:
     /// store each formulation's history (positions, projections, offsets)
     /// and accumulate the slip CSLIP of every closed slave node (R12.1);
@@ -308,6 +326,9 @@ namespace glide
       /// The log has said that the master's facets are the shorter where
       /// the slave nodes touch (finer_master_facets(); once per run).
       bool finer_master_said = false;
+      /// The log has named the slave nodes that a boundary condition holds
+      /// along the contact normal (mark_prescribed(); once per run).
+      bool prescribed_said = false;
       /// Under MPI (R15.2): how far slave nodes and master may move (the
       /// largest motion of each, summed) from where the master facets
       /// were gathered before a search could reach facets not held here
@@ -349,8 +370,28 @@ namespace glide
            const std::vector<Constraint<dim>> &s,
            const VectorType                   &U) const;
 
+    /**
+     * Whether a boundary condition prescribes the motion of the constraint
+     * @p s of @p node along its force direction: every DoF on which the
+     * force l.force acts with a share above 1e-6 of its norm carries a
+     * Dirichlet condition (a slave node fixed or held by YSYMM against a
+     * rigid plane with normal y). The constraint's multiplier row has no
+     * free column then and the Newton systems are singular: such a
+     * constraint is taken out (Outcome::prescribed, open, lambda = 0) and
+     * the condition's reaction carries the node's share of the contact
+     * force. Decided from U and the conditions alone, in the residual
+     * and the Jacobian alike (R16.1). Only a node with a prescribed DoF of
+     * its own can be prescribed (its own share of the force is its normal
+     * times its weight), so the others skip the linearization.
+     */
+    bool
+    has_prescribed_dof(const SlaveNode<dim> &node) const;
+    void
+    mark_prescribed(Constraint<dim>                                &s,
+                    const typename Formulation<dim>::Linearization &l) const;
+
     /// The constraints of every node of @p pair at iterate @p U (moves the
-    /// formulation to U).
+    /// formulation to U; Outcome::prescribed marked).
     std::vector<Constraint<dim>>
     constraints(const Pair &pair, const VectorType &U) const;
 

@@ -64,7 +64,10 @@ namespace glide
     found,      ///< the slave point has a gap to the master
     beyond_end, ///< projects beyond the end of the master: open
     failed,     ///< the closest-point iteration did not converge: open
-    unanchored  ///< small sliding without an anchor (R7.4): never closes
+    unanchored, ///< small sliding without an anchor (R7.4): never closes
+    /// a boundary condition prescribes the motion along the constraint's
+    /// force direction (Contact::mark_prescribed()): never closes
+    prescribed
   };
 
   /// The geometry of one constraint at an iterate: what a formulation

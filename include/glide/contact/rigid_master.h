@@ -51,6 +51,26 @@ namespace glide
     Projection
     project(const dealii::Point<dim> &x) const;
 
+    /**
+     * How deep the straight path of a slave point relative to the master,
+     * from @p x_old at load factor @p t_old to @p x_new at @p t_new (in
+     * the master's own frame), goes into a circle, cylinder or sphere
+     * that the point is outside of at both ends: the radius less the
+     * path's closest distance to the centre (the axis). 0 where it stays
+     * outside, where a point is not more than @p clearance outside at
+     * either end (in contact there), for a plane and for a slave inside
+     * (a hole): there a point outside at both ends has never been inside. A master that passed
+     * through a slave node within one increment leaves it open at both
+     * ends; Contact::passed_through() compares this with the slave facet
+     * size.
+     */
+    double
+    passage_depth(const dealii::Point<dim> &x_old,
+                  const double              t_old,
+                  const dealii::Point<dim> &x_new,
+                  const double              t_new,
+                  const double              clearance) const;
+
   private:
     /// Translation and rotation angle at load factor @p t.
     std::pair<dealii::Tensor<1, dim>, double>
