@@ -1216,8 +1216,8 @@ namespace glide
                 x_old[d] += U_old[node.dofs[d]];
                 x_new[d] += U_new[node.dofs[d]];
               }
-            const double depth =
-              master->passage_depth(x_old, t_old, x_new, t_new, 1e-6 * node.size);
+            const double depth = master->passage_depth(
+              x_old, t_old, x_new, t_new, 1e-6 * node.size);
             if (depth > node.size)
               {
                 ++n;
@@ -1345,7 +1345,21 @@ namespace glide
       {
         if (pair.enforcement->block_size() == 0)
           continue;
-        const auto s = constraints(pair, U);
+        // A state without constraints here (a slave node at the centre of
+        // a rigid circle that moved by its radius in the increment) closes
+        // none; the solve's first residual fails the step, collectively.
+        std::vector<Constraint<dim>> s;
+        std::string                  failure;
+        try
+          {
+            s = constraints(pair, U);
+          }
+        catch (const std::exception &e)
+          {
+            failure = e.what();
+          }
+        if (!first_failure_on_any_process(failure, comm).empty())
+          continue;
         const auto f = forces(pair, s, U);
         // A pair that carries a force already keeps its active set (that
         // of the last converged step).
@@ -1377,7 +1391,24 @@ namespace glide
     unsigned int      total = 0;
     for (const auto &pair : pairs)
       {
-        const auto s = constraints(pair, U);
+        // A slave node at the centre of a rigid circle, cylinder or sphere
+        // in the initial configuration: a misplaced master.
+        std::vector<Constraint<dim>> s;
+        std::string                  failure;
+        try
+          {
+            s = constraints(pair, U);
+          }
+        catch (const UndefinedNormal &e)
+          {
+            failure = std::string(e.what()) + ": the slave " +
+                      (pair.parameters->slave_inside ?
+                         "is there" :
+                         "starts a whole radius inside the master") +
+                      ". Check 'Point' (the centre), 'Radius' and 'Slave "
+                      "inside'.";
+          }
+        throw_first_failure<InputError>(failure, comm);
         // The deepest node beyond its facet size, as (depth / size, depth,
         // position) on every process.
         unsigned int                           n = 0;

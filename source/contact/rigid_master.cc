@@ -162,10 +162,11 @@ namespace glide
       }
     const double r = d.norm();
     // At the centre (or on the axis) the normal is undefined. A node
-    // there lies a whole radius inside the circle: most often a 'Radius'
-    // far beyond the scene (1e20 with the centre next to the slave) or a
-    // misplaced centre, so the message names them (it said "a slave node
-    // lies on the axis" for a slave 1e20 deep inside).
+    // there in the initial configuration lies a whole radius inside the
+    // circle: most often a 'Radius' far beyond the scene (1e20 with the
+    // centre next to the slave) or a misplaced centre, so the set-up's
+    // message names them (Contact::check_initial_overclosure()). During a
+    // step it is an increment too large for the master's size.
     if (!(r > 1e-12 * radius))
       {
         std::ostringstream text;
@@ -178,11 +179,8 @@ namespace glide
                                                                 "centre")
              << " of the rigid master (" << r
              << " from it, less than 1e-12 of 'Radius' = " << radius
-             << "), where its normal is undefined: the slave "
-             << (inside ? "is there" :
-                          "starts a whole radius inside the master")
-             << ". Check 'Point' (the centre), 'Radius' and 'Slave inside'.";
-        throw InputError(text.str());
+             << "), where its normal is undefined";
+        throw UndefinedNormal(text.str());
       }
     const Tensor<1, dim> e          = d / r;
     const Tensor<2, dim> tangential = (P - outer_product(e, e)) / r;
@@ -208,9 +206,8 @@ namespace glide
     // (a cylinder's reference axis is z).
     const auto relative = [&](const Point<dim> &x, const double t) {
       const auto [u, theta] = motion(t);
-      Tensor<1, dim> d =
-        rotate<dim>(x - rotation_center - u, axis, -theta) +
-        (rotation_center - reference_point);
+      Tensor<1, dim> d = rotate<dim>(x - rotation_center - u, axis, -theta) +
+                         (rotation_center - reference_point);
       if (dim == 3 && type == MasterType::rigid_circle)
         d[dim - 1] = 0.;
       return d;
@@ -220,10 +217,9 @@ namespace glide
     if (!(a.norm() > radius + clearance && b.norm() > radius + clearance))
       return 0.;
     const Tensor<1, dim> ab = b - a;
-    const double         s =
-      ab.norm_square() > 0. ?
-                std::clamp(-(a * ab) / ab.norm_square(), 0., 1.) :
-                0.;
+    const double         s  = ab.norm_square() > 0. ?
+                                std::clamp(-(a * ab) / ab.norm_square(), 0., 1.) :
+                                0.;
     return std::max(0., radius - (a + s * ab).norm());
   }
 

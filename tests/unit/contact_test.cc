@@ -101,38 +101,54 @@ TEST(RigidMaster, PassageDepth)
   auto p        = rigid(MasterType::rigid_circle);
   p.translation = "0; -3*t";
   RigidMaster<2> circle(p, "pair");
-  EXPECT_NEAR(circle.passage_depth(Point<2>(1.2, 0.), 0., Point<2>(1.2, 0.), 1., 0.),
-              0.3, 1e-12);
+  EXPECT_NEAR(
+    circle.passage_depth(Point<2>(1.2, 0.), 0., Point<2>(1.2, 0.), 1., 0.),
+    0.3,
+    1e-12);
   // Beside it by more than the radius: never inside.
-  EXPECT_EQ(circle.passage_depth(Point<2>(1.6, 0.), 0., Point<2>(1.6, 0.), 1., 0.), 0.);
+  EXPECT_EQ(
+    circle.passage_depth(Point<2>(1.6, 0.), 0., Point<2>(1.6, 0.), 1., 0.), 0.);
   // Half way only (t = 0.5: centre at (1, 0.5)): the point at (1.2, 0)
   // ends 0.54 from the centre, outside; its path stays outside.
-  EXPECT_EQ(circle.passage_depth(Point<2>(1.2, 0.), 0., Point<2>(1.2, 0.), 0.5, 0.), 0.);
+  EXPECT_EQ(
+    circle.passage_depth(Point<2>(1.2, 0.), 0., Point<2>(1.2, 0.), 0.5, 0.),
+    0.);
   // On the master's surface at the end (in contact): not a passage.
-  EXPECT_EQ(circle.passage_depth(Point<2>(1., 0.), 0., Point<2>(1., -0.5), 1., 1e-9), 0.);
+  EXPECT_EQ(
+    circle.passage_depth(Point<2>(1., 0.), 0., Point<2>(1., -0.5), 1., 1e-9),
+    0.);
   p.rotation        = "2*pi*t";
   p.rotation_center = {1., 2., 0.};
   RigidMaster<2> turning(p, "pair");
-  EXPECT_NEAR(turning.passage_depth(Point<2>(1.2, 0.), 0., Point<2>(1.2, 0.), 1., 0.),
-              0.3, 1e-12);
-  p.rotation = "0";
+  EXPECT_NEAR(
+    turning.passage_depth(Point<2>(1.2, 0.), 0., Point<2>(1.2, 0.), 1., 0.),
+    0.3,
+    1e-12);
+  p.rotation    = "0";
+  p.translation = "0; -3*t; 0";
   RigidMaster<3> cylinder(p, "pair");
-  EXPECT_NEAR(cylinder.passage_depth(Point<3>(1.2, 0., -4.), 0., Point<3>(1.2, 0., 9.), 1., 0.),
-              0.3, 1e-12);
-  auto sphere_p = p;
+  EXPECT_NEAR(cylinder.passage_depth(
+                Point<3>(1.2, 0., -4.), 0., Point<3>(1.2, 0., 9.), 1., 0.),
+              0.3,
+              1e-12);
+  auto sphere_p        = p;
   sphere_p.master_type = MasterType::rigid_sphere;
   RigidMaster<3> sphere(sphere_p, "pair");
   // 0.2 beside the centre line in x and 0.1 in z.
-  EXPECT_NEAR(sphere.passage_depth(Point<3>(1.2, 0., 0.1), 0., Point<3>(1.2, 0., 0.1), 1., 0.),
-              0.5 - std::sqrt(0.05), 1e-12);
+  EXPECT_NEAR(sphere.passage_depth(
+                Point<3>(1.2, 0., 0.1), 0., Point<3>(1.2, 0., 0.1), 1., 0.),
+              0.5 - std::sqrt(0.05),
+              1e-12);
   auto plane_p        = rigid(MasterType::rigid_plane);
   plane_p.translation = "0; -3*t";
   RigidMaster<2> plane(plane_p, "pair");
-  EXPECT_EQ(plane.passage_depth(Point<2>(1.2, 0.), 0., Point<2>(1.2, 0.), 1., 0.), 0.);
+  EXPECT_EQ(
+    plane.passage_depth(Point<2>(1.2, 0.), 0., Point<2>(1.2, 0.), 1., 0.), 0.);
   auto hole_p        = rigid(MasterType::rigid_circle, true);
   hole_p.translation = "0; -3*t";
   RigidMaster<2> hole(hole_p, "pair");
-  EXPECT_EQ(hole.passage_depth(Point<2>(1.2, 0.), 0., Point<2>(1.2, 0.), 1., 0.), 0.);
+  EXPECT_EQ(
+    hole.passage_depth(Point<2>(1.2, 0.), 0., Point<2>(1.2, 0.), 1., 0.), 0.);
 }
 
 // P1.4: a rotation about an axis other than z in 3D. A cylinder through

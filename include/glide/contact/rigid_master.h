@@ -7,9 +7,21 @@
 #include <deal.II/base/tensor.h>
 
 #include <memory>
+#include <stdexcept>
 
 namespace glide
 {
+  /// A slave point at the centre (on the axis) of a rigid circle, cylinder
+  /// or sphere, where the normal is undefined (RigidMaster::project()). In
+  /// the initial configuration a misplaced master (an input error:
+  /// Contact::check_initial_overclosure()); during a load step an
+  /// increment that moved the master by its radius against the slave (the
+  /// step fails and is cut back).
+  struct UndefinedNormal : std::runtime_error
+  {
+    using std::runtime_error::runtime_error;
+  };
+
   /**
    * An analytical rigid master surface (P1.4): a plane (a line in 2D), a
    * circle/cylinder (axis along z in 3D) or a sphere, moved by a prescribed
@@ -46,7 +58,7 @@ namespace glide
     move(const dealii::Point<dim> &y, const double from, const double to) const;
 
     /// Gap, normal and curvature for the slave point @p x (current
-    /// position). Throws std::runtime_error where the normal is undefined
+    /// position). Throws UndefinedNormal where the normal is undefined
     /// (a slave point on the axis of a circle or at a sphere's center).
     Projection
     project(const dealii::Point<dim> &x) const;
@@ -59,10 +71,10 @@ namespace glide
      * path's closest distance to the centre (the axis). 0 where it stays
      * outside, where a point is not more than @p clearance outside at
      * either end (in contact there), for a plane and for a slave inside
-     * (a hole): there a point outside at both ends has never been inside. A master that passed
-     * through a slave node within one increment leaves it open at both
-     * ends; Contact::passed_through() compares this with the slave facet
-     * size.
+     * (a hole): there a point outside at both ends has never been inside. A
+     * master that passed through a slave node within one increment leaves it
+     * open at both ends; Contact::passed_through() compares this with the slave
+     * facet size.
      */
     double
     passage_depth(const dealii::Point<dim> &x_old,
