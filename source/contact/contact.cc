@@ -1016,6 +1016,13 @@ namespace glide
                       mark_prescribed(s, l);
                   }
               }
+            catch (const UndefinedNormal &e)
+              {
+                failure = std::string(e.what()) +
+                          " (the increment moved the master by about its "
+                          "radius against the slave)";
+                continue;
+              }
             catch (const std::exception &e)
               {
                 // Finish the loop so that every process reaches compress().
@@ -1131,7 +1138,7 @@ namespace glide
             prescribed += s[i].outcome == Outcome::prescribed ? 1 : 0;
             normal_force += f[i].lambda;
             force += f[i].lambda * s[i].normal;
-            if (s[i].found())
+            if (s[i].found() || s[i].outcome == Outcome::prescribed)
               penetration = std::max(penetration, -s[i].gap);
           }
         // The force on the master surface of a body (R14.6: the exact
@@ -1210,6 +1217,8 @@ namespace glide
         double       deepest = 0.; // relative to the node's facet size
         for (const auto &node : pair.nodes)
           {
+            if (!(node.size > 0.))
+              continue;
             Point<dim> x_old = node.X, x_new = node.X;
             for (unsigned int d = 0; d < dim; ++d)
               {
@@ -1271,9 +1280,11 @@ namespace glide
                    "warning: contact pair '" + pair.parameters->name +
                      "': a boundary condition prescribes the motion along "
                      "the contact normal of ",
-                   " slave node(s), so contact is not enforced there and "
-                   "the condition's reaction carries their share of the "
-                   "contact force (counted in statistics.csv as "
+                   " slave node(s), so contact is not enforced there: the "
+                   "condition decides where they are (one that drives them "
+                   "into the master leaves them there, in "
+                   "'max_penetration') and its reaction carries their share "
+                   "of the contact force (counted in statistics.csv as "
                    "'prescribed'); take them out of the condition or out "
                    "of the slave surface if contact should hold them (node "
                    "positions in the reference configuration)");
@@ -1354,7 +1365,7 @@ namespace glide
           {
             s = constraints(pair, U);
           }
-        catch (const std::exception &e)
+        catch (const UndefinedNormal &e)
           {
             failure = e.what();
           }
@@ -1401,12 +1412,7 @@ namespace glide
           }
         catch (const UndefinedNormal &e)
           {
-            failure = std::string(e.what()) + ": the slave " +
-                      (pair.parameters->slave_inside ?
-                         "is there" :
-                         "starts a whole radius inside the master") +
-                      ". Check 'Point' (the centre), 'Radius' and 'Slave "
-                      "inside'.";
+            failure = pair.formulation->rigid_master()->misplaced(e);
           }
         throw_first_failure<InputError>(failure, comm);
         // The deepest node beyond its facet size, as (depth / size, depth,

@@ -193,6 +193,15 @@ namespace glide
   }
 
   template <int dim>
+  std::string
+  RigidMaster<dim>::misplaced(const UndefinedNormal &e) const
+  {
+    return std::string(e.what()) + ": the slave " +
+           (inside ? "is there" : "starts a whole radius inside the master") +
+           ". Check 'Point' (the centre), 'Radius' and 'Slave inside'.";
+  }
+
+  template <int dim>
   double
   RigidMaster<dim>::passage_depth(const Point<dim> &x_old,
                                   const double      t_old,

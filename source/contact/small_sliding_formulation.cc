@@ -1,3 +1,4 @@
+#include <glide/base/collective_failure.h>
 #include <glide/contact/small_sliding_formulation.h>
 #include <glide/scene/input_error.h>
 
@@ -87,11 +88,22 @@ namespace glide
         // Analytical rigid master: the closest point and its normal at the
         // start.
         this->master->set_time(0.);
-        if (surface_to_surface)
-          setup_surface_to_surface();
-        else
-          for (const auto &node : nodes)
-            anchors.push_back(rigid_anchor(node.X));
+        // A slave node at the master's centre: misplaced (an input error on
+        // every process).
+        std::string failure;
+        try
+          {
+            if (surface_to_surface)
+              setup_surface_to_surface();
+            else
+              for (const auto &node : nodes)
+                anchors.push_back(rigid_anchor(node.X));
+          }
+        catch (const UndefinedNormal &e)
+          {
+            failure = this->master->misplaced(e);
+          }
+        throw_first_failure<InputError>(failure, this->context.comm);
       }
     previous_offset.assign(nodes.size(), {{0., 0.}});
     std::vector<std::string> unanchored;

@@ -28,6 +28,16 @@ namespace glide
 
   namespace
   {
+    /// Where each line of an expanded .prm scene came from: the file as
+    /// written and its line number (expand_includes()).
+    using LineOrigins = std::vector<std::pair<std::string, unsigned int>>;
+
+    /// While a scene's expanded text is parsed: the origins of its lines
+    /// and the name deal.II's messages give it, so that explain() names
+    /// the file and line a mistake is on.
+    const LineOrigins *parsed_origins = nullptr;
+    std::string        parsed_name;
+
     /// Turn a deal.II exception from ParameterHandler into a message for
     /// people: only its explanation, not the source location in deal.II.
     std::string
@@ -41,21 +51,35 @@ namespace glide
       std::istringstream in(s.str());
       while (in >> word)
         text += (text.empty() ? "" : " ") + word;
-      const std::string include = "the given file to include <";
-      if (const auto at = text.find(include); at != std::string::npos)
+      // The line of an expanded scene (expand_includes()) as the line of
+      // the file it came from.
+      const std::string marker = "Line <";
+      if (const auto at = text.find(marker);
+          parsed_origins != nullptr && at != std::string::npos)
         {
-          const auto        from = at + include.size();
-          const std::string name =
-            text.substr(from, text.find('>', from) - from);
-          std::error_code ec;
-          if (!name.empty() && name[0] == '/')
-            text += " Check that it exists and can be read.";
-          else
-            text += " deal.II opens 'include' files relative to the current "
-                    "directory (" +
-                    std::filesystem::current_path(ec).string() +
-                    "), not to the file that includes them: write the path "
-                    "from there, or an absolute path.";
+          // The name as the message has it, its whitespace collapsed.
+          std::string        name;
+          std::istringstream words(parsed_name);
+          for (std::string w; words >> w;)
+            name += (name.empty() ? "" : " ") + w;
+          const auto    close = text.find("> of file <" + name + ">", at);
+          const auto    from  = at + marker.size();
+          unsigned long line  = 0;
+          try
+            {
+              line = std::stoul(text.substr(from, close - from));
+            }
+          catch (const std::exception &)
+            {}
+          if (close != std::string::npos && line >= 1 &&
+              line <= parsed_origins->size())
+            {
+              const auto &[file, n] = (*parsed_origins)[line - 1];
+              text.replace(at,
+                           close + 12 + name.size() - at,
+                           "Line <" + std::to_string(n) + "> of file <" + file +
+                             ">");
+            }
         }
       if (text.find("Can't convert the parameter value") != std::string::npos &&
           text.find("to a double") != std::string::npos)
@@ -169,15 +193,53 @@ namespace glide
     /// of a text file.
     constexpr const char *byte_order_mark = "\xEF\xBB\xBF";
 
-    /// Follow the 'include' statements of a .prm scene file (deal.II's
-    /// ParameterHandler opens them relative to the current directory) and
-    /// refuse a file that includes itself, directly or through others: the
-    /// parser recursed until the stack overflowed (a segmentation fault
-    /// without a message). @p chain holds the files that lead to @p file,
-    /// as written and as canonical paths.
+    /// The path an 'include' statement of @p including names: relative
+    /// to the directory of the including file, as the mesh files of a scene
+    /// are; if nothing is there, relative to the current directory (the
+    /// rule of deal.II's ParameterHandler, which glide followed until
+    /// 2026-12-06).
+    std::string
+    include_path(const std::string &including, const std::string &name)
+    {
+      namespace fs = std::filesystem;
+      const fs::path written(name);
+      if (written.is_absolute())
+        return name;
+      std::error_code ec;
+      const fs::path  beside = fs::path(including).parent_path() / written;
+      // As the operating system resolves it ('..' after a symbolic link
+      // is not the link's parent); normalized in messages only.
+      if (fs::exists(beside, ec))
+        return beside.string();
+      if (fs::exists(written, ec))
+        return name;
+      throw InputError(
+        "The scene file '" + including + "' includes '" + name +
+        "', which was found neither next to it ('" +
+        beside.lexically_normal().string() +
+        "') nor in the current directory (" + fs::current_path(ec).string() +
+        "). Check the path; a relative path is taken from the directory "
+        "of the file that includes it.");
+    }
+
+    /**
+     * The text of the .prm scene file @p file with its 'include' statements
+     * replaced by the files they name (include_path()), appended to
+     * @p text, with the origin of each line in @p origins. deal.II's
+     * ParameterHandler would open included files itself, relative to the
+     * current directory. Refuses a file that includes itself, directly or
+     * through others (deal.II's parser recursed until the stack
+     * overflowed: a segmentation fault without a message) and an include
+     * of a directory. A UTF-8 byte-order mark at the start of a file is
+     * skipped (deal.II took it for part of the first line and refused a
+     * line that looks right). @p chain holds the files that lead to
+     * @p file, as written and as canonical paths.
+     */
     void
-    check_includes(const std::string                                &file,
-                   std::vector<std::pair<std::string, std::string>> &chain)
+    expand_includes(const std::string                                &file,
+                    std::vector<std::pair<std::string, std::string>> &chain,
+                    std::string                                      &text,
+                    LineOrigins                                      &origins)
     {
       std::error_code   ec;
       const std::string canonical =
@@ -201,35 +263,56 @@ namespace glide
                 "The scene file '" + chain.back().first + "' includes '" +
                   file +
                   "', which is a directory; 'include' takes the path of a "
-                  ".prm file (relative to the current directory).");
+                  ".prm file.");
       std::ifstream in(file);
-      if (!in)
-        return; // the parser names the file it cannot open
+      require(static_cast<bool>(in),
+              "The scene file '" + file + "'" +
+                (chain.empty() ?
+                   std::string() :
+                   " (included by '" + chain.back().first + "')") +
+                " cannot be read. Check that it exists and can be read.");
       chain.emplace_back(file, canonical);
-      std::string line;
-      for (bool first = true; std::getline(in, line); first = false)
+      std::string  line;
+      bool         continued = false;
+      unsigned int n_lines   = 0;
+      for (unsigned int n = 1; std::getline(in, line); ++n)
         {
-          // The scene file's own mark is skipped (Scene::read()); deal.II
-          // reads included files itself and would stop at the mark with
-          // a message about a line that looks right.
-          if (first && chain.size() == 1 && line.rfind(byte_order_mark, 0) == 0)
+          n_lines = n;
+          if (n == 1 && line.rfind(byte_order_mark, 0) == 0)
             line.erase(0, 3);
-          if (first && chain.size() > 1 && line.rfind(byte_order_mark, 0) == 0)
-            throw InputError(
-              "The scene file '" + file + "' (included by '" +
-              chain[chain.size() - 2].first +
-              "') starts with a UTF-8 byte-order mark, an invisible "
-              "character some editors write: save it as UTF-8 without BOM "
-              "(or ASCII).");
-          if (const auto hash = line.find('#'); hash != std::string::npos)
-            line.erase(hash);
-          line = Utilities::trim(line);
-          if (line.rfind("include ", 0) == 0 || line.rfind("INCLUDE ", 0) == 0)
+          // As deal.II reads a line: tabs as spaces, without a CR.
+          std::string statement = line;
+          if (!statement.empty() && statement.back() == '\r')
+            statement.pop_back();
+          std::replace(statement.begin(), statement.end(), '\t', ' ');
+          if (const auto hash = statement.find('#'); hash != std::string::npos)
+            statement.erase(hash);
+          statement = Utilities::trim(statement);
+          if (statement.rfind("include ", 0) == 0 ||
+              statement.rfind("INCLUDE ", 0) == 0)
             {
-              const std::string name = Utilities::trim(line.substr(8));
+              const std::string name = Utilities::trim(statement.substr(8));
               if (!name.empty())
-                check_includes(name, chain);
+                {
+                  expand_includes(include_path(file, name),
+                                  chain,
+                                  text,
+                                  origins);
+                  continued = false;
+                  continue;
+                }
             }
+          text += line + "\n";
+          origins.emplace_back(file, n);
+          continued = !statement.empty() && statement.back() == '\\';
+        }
+      // deal.II joins a line that ends in a backslash with the next; it
+      // read each included file on its own, so the join ends with the
+      // file (an empty line ends it).
+      if (continued)
+        {
+          text += "\n";
+          origins.emplace_back(file, n_lines);
         }
       chain.pop_back();
     }
@@ -970,26 +1053,29 @@ namespace glide
         }
     };
 
-    const bool prm_file = scene_format(filename) == "prm";
+    // A .prm file is parsed from its text with its 'include' statements
+    // expanded (expand_includes()) and without a UTF-8 byte-order mark at
+    // its start (deal.II took the mark for part of the first line and
+    // refused a line that looks right).
+    const bool  prm_file = scene_format(filename) == "prm";
+    std::string text;
+    LineOrigins origins;
     if (prm_file)
       {
         std::vector<std::pair<std::string, std::string>> chain;
-        check_includes(filename, chain);
+        expand_includes(filename, chain, text, origins);
       }
-
-    // A .prm file is parsed from its text, without a UTF-8 byte-order mark
-    // at its start (deal.II took the mark for part of the first line and
-    // refused a line that looks right).
-    std::string text;
-    if (prm_file)
+    // explain() names the file and line of a mistake from these, until
+    // this function returns.
+    struct ForgetOrigins
+    {
+      ~ForgetOrigins()
       {
-        std::ifstream      in(filename);
-        std::ostringstream all;
-        all << in.rdbuf();
-        text = all.str();
-        if (text.rfind(byte_order_mark, 0) == 0)
-          text.erase(0, 3);
+        parsed_origins = nullptr;
       }
+    } forget_origins;
+    parsed_origins   = prm_file ? &origins : nullptr;
+    parsed_name      = filename;
     const auto parse = [&](ParameterHandler &prm, const bool skip_undefined) {
       if (prm_file)
         {

@@ -1196,18 +1196,26 @@ def case_scene_file_with_a_byte_order_mark():
     editors write one): read as without it. Until 2026-12-06 deal.II took
     the mark for part of the first line and refused it ("The line <# ...>
     could not be parsed"), a line that looks right. Same statistics as the
-    scene without the mark."""
+    scene without the mark. The same for a file with the mark that a scene
+    with its own mark includes (with CRLF line ends): until 2026-12-06
+    refused (error.include_with_byte_order_mark), as deal.II read included
+    files itself; glide expands them now."""
     plain = open(scene_file("patch-test.prm"), "rb").read()
     directory = tempfile.mkdtemp(prefix="glide-bom-")
     marked = os.path.join(directory, "patch-test.prm")
     with open(marked, "wb") as f:
         f.write(b"\xef\xbb\xbf" + plain)
-    rows, _, _ = run(marked, "Output/Write VTU=false", name="marked")
+    including = os.path.join(directory, "including.prm")
+    with open(including, "wb") as f:
+        f.write(b"\xef\xbb\xbfinclude patch-test.prm\r\n# nothing else\r\n")
     reference, _, _ = run(scene_file("patch-test.prm"), "Output/Write VTU=false", name="plain")
-    check(len(rows) == len(reference) and len(rows) > 0, f"{len(rows)} steps with the mark, {len(reference)} without")
-    for a, b in zip(rows, reference):
-        close(a["contact_interface_normal_force"], b["contact_interface_normal_force"], 1e-14,
-              f"step {int(a['step'])}: same contact force")
+    for scene_path in (marked, including):
+        rows, _, _ = run(scene_path, "Output/Write VTU=false", name="marked")
+        check(len(rows) == len(reference) and len(rows) > 0,
+              f"{os.path.basename(scene_path)}: {len(rows)} steps with the mark, {len(reference)} without")
+        for a, b in zip(rows, reference):
+            close(a["contact_interface_normal_force"], b["contact_interface_normal_force"], 1e-14,
+                  f"{os.path.basename(scene_path)}, step {int(a['step'])}: same contact force")
     shutil.rmtree(directory, ignore_errors=True)
 
 
@@ -1288,6 +1296,38 @@ def case_rigid_master_passing_through():
                        "Load stepping/Number of steps=4", name="sliding")
     check("passed through" not in log and rows and rows[-1]["cut_backs"] == 0 and rows[-1]["load_factor"] == 1,
           "a circle sliding over the block at a shallow depth runs without cut-back")
+
+
+def case_include_relative_to_the_including_file():
+    """P4.1: an 'include' is taken relative to the file that contains it,
+    as mesh files are (until 2026-12-06 relative to the current directory,
+    deal.II's rule, so a scene that includes a file next to it ran only
+    from its own directory). A scene in a temporary directory includes
+    parts/patch.prm (parameters/patch-test.prm), which includes
+    steps.prm next to itself (3 load steps); run from the source tree's
+    root: the same statistics as the patch test with 3 steps set on the
+    command line."""
+    directory = tempfile.mkdtemp(prefix="glide-include-")
+    os.makedirs(os.path.join(directory, "parts"))
+    with open(os.path.join(directory, "scene.prm"), "w") as f:
+        f.write("include parts/patch.prm\n")
+    with open(os.path.join(directory, "parts", "patch.prm"), "w") as f:
+        f.write(open(scene_file("patch-test.prm")).read() + "\ninclude steps.prm\n")
+    with open(os.path.join(directory, "parts", "steps.prm"), "w") as f:
+        f.write("subsection Load stepping\n  set Number of steps = 3\nend\n")
+    cwd = os.getcwd()
+    os.chdir(ROOT)
+    try:
+        rows, _, _ = run(os.path.join(directory, "scene.prm"), "Output/Write VTU=false", name="included")
+    finally:
+        os.chdir(cwd)
+    reference, _, _ = run(scene_file("patch-test.prm"), "Output/Write VTU=false", "Load stepping/Number of steps=3",
+                          name="plain")
+    check(len(rows) == 3 and len(reference) == 3, f"3 steps from the nested include: {len(rows)}")
+    for a, b in zip(rows, reference):
+        close(a["contact_interface_normal_force"], b["contact_interface_normal_force"], 1e-14,
+              f"step {int(a['step'])}: same contact force")
+    shutil.rmtree(directory, ignore_errors=True)
 
 
 def case_mortar_normals_missing_the_master():

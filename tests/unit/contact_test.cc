@@ -91,11 +91,11 @@ TEST(RigidMaster, PrescribedMotion)
 // through it within an increment (Contact::passed_through()). A circle of
 // radius 0.5 at (1, 2) moving by (0, -3) while the point stays at (1.2, 0):
 // relative to the master the point goes from 2 below the centre to 1
-// above it, 0.2 beside the centre line: depth 0.5 - 0.2. The same in the
-// master's frame when the master also makes a full turn about its centre,
-// and for a cylinder (the axial coordinate ignored) and a
-// sphere. Zero for a path that stays outside, a point in contact (within
-// the clearance) at one end, a plane, and a slave inside a hole.
+// above it, 0.2 beside the centre line: depth 0.5 - 0.2. The same for a
+// cylinder (the axial coordinate ignored) and a sphere, and the depth for
+// a master that turns and moves. Zero for a path that
+// stays outside, a point in contact (within the clearance) at one end, a
+// plane, and a slave inside a hole.
 TEST(RigidMaster, PassageDepth)
 {
   auto p        = rigid(MasterType::rigid_circle);
@@ -113,16 +113,30 @@ TEST(RigidMaster, PassageDepth)
   EXPECT_EQ(
     circle.passage_depth(Point<2>(1.2, 0.), 0., Point<2>(1.2, 0.), 0.5, 0.),
     0.);
-  // On the master's surface at the end (in contact): not a passage.
-  EXPECT_EQ(
-    circle.passage_depth(Point<2>(1., 0.), 0., Point<2>(1., -0.5), 1., 1e-9),
-    0.);
-  p.rotation        = "2*pi*t";
-  p.rotation_center = {1., 2., 0.};
-  RigidMaster<2> turning(p, "pair");
+  // Within the clearance of the master's surface at the end (in contact):
+  // not a passage; without the clearance the same path counts (it runs
+  // through the centre).
+  EXPECT_EQ(circle.passage_depth(
+              Point<2>(1., 0.), 0., Point<2>(1., -0.5 + 1e-12), 1., 1e-9),
+            0.);
+  EXPECT_NEAR(circle.passage_depth(
+                Point<2>(1., 0.), 0., Point<2>(1., -0.5 + 1e-12), 1., 0.),
+              0.5,
+              1e-9);
+  // A quarter turn about the centre and a translation (0.2, 0): the point
+  // fixed at (1, 2.55) is at (0, 0.55) from the centre in the master's
+  // frame at t = 0 and at R(-pi/2) ((-0.2, 0.55)) = (0.55, 0.2) at t = 1;
+  // the chord between them passes 0.3025 / sqrt(0.425) from the centre.
+  // (Without the turn the path stays 0.55 away; with the turn's sign
+  // reversed it passes 0.325 away.)
+  auto q            = rigid(MasterType::rigid_circle);
+  q.translation     = "0.2*t; 0";
+  q.rotation        = "pi/2*t";
+  q.rotation_center = {1., 2., 0.};
+  RigidMaster<2> turning(q, "pair");
   EXPECT_NEAR(
-    turning.passage_depth(Point<2>(1.2, 0.), 0., Point<2>(1.2, 0.), 1., 0.),
-    0.3,
+    turning.passage_depth(Point<2>(1., 2.55), 0., Point<2>(1., 2.55), 1., 0.),
+    0.5 - 0.3025 / std::sqrt(0.425),
     1e-12);
   p.rotation    = "0";
   p.translation = "0; -3*t; 0";
@@ -193,7 +207,7 @@ TEST(RigidMaster, RotationAboutAnyAxisIn3D)
 TEST(RigidMaster, NormalUndefinedAtTheCenterIsReported)
 {
   RigidMaster<2> m(rigid(MasterType::rigid_circle), "pair");
-  EXPECT_THROW(m.project(Point<2>(1., 2.)), std::runtime_error);
+  EXPECT_THROW(m.project(Point<2>(1., 2.)), UndefinedNormal);
 }
 
 namespace

@@ -63,6 +63,12 @@ namespace glide
     Projection
     project(const dealii::Point<dim> &x) const;
 
+    /// The input error for UndefinedNormal @p e in the initial
+    /// configuration: the master is misplaced (its 'Point', 'Radius' or
+    /// 'Slave inside').
+    std::string
+    misplaced(const UndefinedNormal &e) const;
+
     /**
      * How deep the straight path of a slave point relative to the master,
      * from @p x_old at load factor @p t_old to @p x_new at @p t_new (in
