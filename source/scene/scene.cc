@@ -280,16 +280,24 @@ namespace glide
           n_lines = n;
           if (n == 1 && line.rfind(byte_order_mark, 0) == 0)
             line.erase(0, 3);
-          // As deal.II reads a line: tabs as spaces, without a CR.
+          // As deal.II reads a line: tabs as spaces, without a CR. It
+          // joins a line that ends in a backslash with the next before it
+          // removes comments, so a continued comment swallows the next
+          // line, and a line that continues another is no statement of
+          // its own.
           std::string statement = line;
           if (!statement.empty() && statement.back() == '\r')
             statement.pop_back();
           std::replace(statement.begin(), statement.end(), '\t', ' ');
+          statement               = Utilities::trim(statement);
+          const bool continuation = continued;
+          continued = !statement.empty() && statement.back() == '\\';
           if (const auto hash = statement.find('#'); hash != std::string::npos)
             statement.erase(hash);
           statement = Utilities::trim(statement);
-          if (statement.rfind("include ", 0) == 0 ||
-              statement.rfind("INCLUDE ", 0) == 0)
+          if (!continuation && !continued &&
+              (statement.rfind("include ", 0) == 0 ||
+               statement.rfind("INCLUDE ", 0) == 0))
             {
               const std::string name = Utilities::trim(statement.substr(8));
               if (!name.empty())
@@ -298,13 +306,11 @@ namespace glide
                                   chain,
                                   text,
                                   origins);
-                  continued = false;
                   continue;
                 }
             }
           text += line + "\n";
           origins.emplace_back(file, n);
-          continued = !statement.empty() && statement.back() == '\\';
         }
       // deal.II joins a line that ends in a backslash with the next; it
       // read each included file on its own, so the join ends with the

@@ -1296,6 +1296,19 @@ def case_rigid_master_passing_through():
                        "Load stepping/Number of steps=4", name="sliding")
     check("passed through" not in log and rows and rows[-1]["cut_backs"] == 0 and rows[-1]["load_factor"] == 1,
           "a circle sliding over the block at a shallow depth runs without cut-back")
+    # An increment that puts the circle's centre exactly on a slave node
+    # (the block's top node at (0, 0)): the normal is undefined there, so
+    # the step fails (exit 2) and the message says that the increment moved
+    # the master by its radius; at set-up it would be an input error.
+    _, log, _ = run(scene_file("rigid-punch.prm"), "Output/Write VTU=false",
+                    "Contact pair punch/Rigid master/Point=0, 1.5",
+                    "Contact pair punch/Rigid master/Translation=0; -1.5*t",
+                    "Load stepping/Number of steps=1", "Load stepping/Maximum cut-backs=0",
+                    name="centre", expect_status=2)
+    last = log.strip().splitlines()[-1]
+    check(last.startswith("glide: error: load step 1 failed") and "slave node at (0, 0) lies at the centre" in last
+          and "the increment moved the master by about its radius against the slave" in last,
+          f"a node at the centre during a step fails the step and says why: {last}")
 
 
 def case_include_relative_to_the_including_file():
@@ -1309,12 +1322,24 @@ def case_include_relative_to_the_including_file():
     command line."""
     directory = tempfile.mkdtemp(prefix="glide-include-")
     os.makedirs(os.path.join(directory, "parts"))
+    # Written in other ways: a tab after 'include'; patch.prm ends (without
+    # a newline) in a comment continued by a backslash, which deal.II ends
+    # with the file, so the include after it in scene.prm is read; a
+    # backslash-continued line that starts with 'include' is part of the
+    # line before it (a comment here), not an include.
     with open(os.path.join(directory, "scene.prm"), "w") as f:
-        f.write("include parts/patch.prm\n")
+        f.write("include\tparts/patch.prm\n# continued \\\ninclude nowhere.prm\ninclude parts/linked/steps.prm\n")
     with open(os.path.join(directory, "parts", "patch.prm"), "w") as f:
-        f.write(open(scene_file("patch-test.prm")).read() + "\ninclude steps.prm\n")
-    with open(os.path.join(directory, "parts", "steps.prm"), "w") as f:
-        f.write("subsection Load stepping\n  set Number of steps = 3\nend\n")
+        f.write(open(scene_file("patch-test.prm")).read() + "\n# the end of the part \\")
+    # parts/linked is a symbolic link to other/deeper; steps.prm there
+    # includes '../solver.prm', which the operating system takes from
+    # other/ (the link's target's parent), not from parts/.
+    os.makedirs(os.path.join(directory, "other", "deeper"))
+    os.symlink(os.path.join(directory, "other", "deeper"), os.path.join(directory, "parts", "linked"))
+    with open(os.path.join(directory, "other", "deeper", "steps.prm"), "w") as f:
+        f.write("subsection Load stepping\n  set Number of steps = 3\nend\ninclude ../solver.prm\n")
+    with open(os.path.join(directory, "other", "solver.prm"), "w") as f:
+        f.write("subsection Nonlinear solver\n  set Maximum iterations = 30\nend\n")
     cwd = os.getcwd()
     os.chdir(ROOT)
     try:
