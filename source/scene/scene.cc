@@ -271,10 +271,41 @@ namespace glide
                    std::string() :
                    " (included by '" + chain.back().first + "')") +
                 " cannot be read. Check that it exists and can be read.");
+      // The scene's own file is checked by deal.II, as a whole.
+      const bool        included = !chain.empty();
+      const std::string includer =
+        included ? "' (included by '" + chain.back().first + "')" : "'";
       chain.emplace_back(file, canonical);
       std::string  line;
       bool         continued = false;
       unsigned int n_lines   = 0;
+      // deal.II read each included file on its own and refused one that
+      // does not close the subsections it opens: an 'end' left out there
+      // would otherwise put the rest of the including file into that
+      // subsection, and the message would name an entry of the including
+      // file. The lines of the subsections this file opened and has not
+      // closed, from its statements (continued lines joined).
+      std::string               joined;
+      std::vector<unsigned int> opened;
+      const auto                check_balance = [&](const unsigned int n) {
+        std::string s = joined;
+        if (const auto hash = s.find('#'); hash != std::string::npos)
+          s.erase(hash);
+        s = Utilities::trim(s);
+        if (s.rfind("subsection ", 0) == 0 || s.rfind("SUBSECTION ", 0) == 0)
+          opened.push_back(n);
+        else if (s.rfind("end", 0) == 0 || s.rfind("END", 0) == 0)
+          {
+            require(!opened.empty(),
+                    "Line " + std::to_string(n) + " of the scene file '" +
+                      file + includer +
+                      ": this 'end' closes a subsection that the including "
+                                     "file opened. An included file must close exactly the "
+                                     "subsections it opens; move the 'end' to the including "
+                                     "file, after the 'include'.");
+            opened.pop_back();
+          }
+      };
       for (unsigned int n = 1; std::getline(in, line); ++n)
         {
           n_lines = n;
@@ -292,6 +323,14 @@ namespace glide
           statement               = Utilities::trim(statement);
           const bool continuation = continued;
           continued = !statement.empty() && statement.back() == '\\';
+          joined +=
+            continued ? statement.substr(0, statement.size() - 1) : statement;
+          if (!continued)
+            {
+              if (included)
+                check_balance(n);
+              joined.clear();
+            }
           if (const auto hash = statement.find('#'); hash != std::string::npos)
             statement.erase(hash);
           statement = Utilities::trim(statement);
@@ -319,7 +358,18 @@ namespace glide
         {
           text += "\n";
           origins.emplace_back(file, n_lines);
+          if (included)
+            check_balance(n_lines);
+          joined.clear();
         }
+      require(opened.empty(),
+              "The scene file '" + file + includer + " leaves " +
+                std::to_string(opened.size()) +
+                " subsection(s) open (the last opened on line " +
+                (opened.empty() ? std::string() :
+                                  std::to_string(opened.back())) +
+                "). An included file must close every subsection it opens; "
+                "add the missing 'end'.");
       chain.pop_back();
     }
 
