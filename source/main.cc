@@ -11,6 +11,7 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 
+#include <csignal>
 #include <filesystem>
 #include <iostream>
 #include <new>
@@ -36,8 +37,9 @@ namespace
     "\n"
     "Exit status: 0 success, 1 input error, 2 a load step failed, 3 internal\n"
     "error, 4 input/output error (output directory, full disk, closed\n"
-    "standard output), 128+N stopped by signal N (SIGTERM: 143, SIGINT:\n"
-    "130) after the last complete load step. Run in parallel with\n"
+    "standard output, file size limit), 128+N stopped by signal N (SIGTERM:\n"
+    "143, SIGINT: 130; also SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, SIGXCPU and\n"
+    "SIGALRM) after the last complete load step. Run in parallel with\n"
     "mpirun -np N glide SCENE.prm.\n";
 
   /// Standard output must have taken everything (a closed or full
@@ -77,6 +79,10 @@ main(int argc, char **argv)
   // then SIGTERM and SIGINT end glide at once, also in the middle of
   // reading a mesh (a FIFO, a slow file system) or building a large one,
   // where a flag that nobody checks kept it running.
+  // A file that reaches the file size limit (ulimit -f): a failed write
+  // (EFBIG), which the output reports as an input/output error, instead of
+  // SIGXFSZ, whose default action ended glide in the middle of a file.
+  std::signal(SIGXFSZ, SIG_IGN);
   try
     {
       std::vector<std::string> args(argv + 1, argv + argc), overrides;

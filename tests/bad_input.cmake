@@ -142,7 +142,22 @@ set(LONG_BLOCK ${BLOCK} --set "Load stepping/Number of steps=400" --set "Body bl
 set(LONG_PUNCH ${PARAMETERS}/rigid-punch.prm --set "Load stepping/Number of steps=200")
 glide_bad_input(fault.sigterm --fault sigterm --status 143 --expect "stopped by signal SIGTERM" -- ${LONG_BLOCK})
 glide_bad_input(fault.sigterm_contact --fault sigterm --status 143 --expect "stopped by signal SIGTERM" -- ${LONG_PUNCH})
+# The signals a batch system sends before it ends a job (SLURM's --signal,
+# PBS: SIGUSR1), a CPU time limit (SIGXCPU) and a terminal's quit key
+# (SIGQUIT) stop the run as SIGTERM does: until 2026-12-06 their default
+# action ended glide in the middle of a file.
+glide_bad_input(fault.sigusr1 --fault sigusr1 --status 138 --expect "stopped by signal SIGUSR1" -- ${LONG_BLOCK})
+glide_bad_input(fault.sigxcpu_contact --fault sigxcpu --status 152 --expect "stopped by signal SIGXCPU" -- ${LONG_PUNCH})
+glide_bad_input(fault.sigquit --fault sigquit --status 131 --expect "stopped by signal SIGQUIT" -- ${LONG_BLOCK})
 glide_bad_input(fault.sigkill --fault sigkill -- ${LONG_BLOCK})
 glide_bad_input(fault.sigkill_contact --fault sigkill -- ${LONG_PUNCH})
 glide_bad_input(fault.disk_full --fault disk-full --disk-size 160k --status 4 --expect "input/output error: .*disk.* full" -- ${LONG_BLOCK})
+# A result file that reaches the process's file size limit (ulimit -f)
+# is an input/output error that says so; until 2026-12-06 SIGXFSZ ended
+# glide in the middle of the file.
+# (MPI's start-up needs files of a few MiB, so the limit is 4 MiB and the
+# block's VTU about 5 MiB.)
+glide_bad_input(fault.file_size_limit --fault file-size-limit --file-size-limit 4096 --status 4
+  --expect "input/output error: .*File too large%3B the file size limit of the process \\(ulimit -f\\) was reached"
+  -- ${BLOCK} --set "Body block/Block/Subdivisions=240, 120" --set "Load stepping/Number of steps=2")
 glide_bad_input(fault.disk_full_contact --fault disk-full --disk-size 1m --status 4 --expect "input/output error: .*(disk.* full|cut short)" -- ${LONG_PUNCH})

@@ -6,6 +6,8 @@
 
 #include <csignal>
 #include <cstring>
+#include <string>
+#include <utility>
 
 namespace glide
 {
@@ -19,25 +21,43 @@ namespace glide
       last_signal = signal_number;
     }
 
+    /// The signals that stop a run between load steps, with their names:
+    /// a terminal's (SIGINT, SIGQUIT, SIGHUP), kill's default (SIGTERM),
+    /// and those a batch system sends before it ends a job or that a
+    /// limit raises: SIGUSR1 and SIGUSR2 (SLURM's --signal, PBS), SIGXCPU
+    /// (a CPU time limit, ulimit -t), SIGALRM. Their default action ended
+    /// glide in the middle of a file.
+    constexpr std::pair<int, const char *> stops[] = {{SIGTERM, "SIGTERM"},
+                                                      {SIGINT, "SIGINT"},
+                                                      {SIGHUP, "SIGHUP"},
+                                                      {SIGQUIT, "SIGQUIT"},
+                                                      {SIGUSR1, "SIGUSR1"},
+                                                      {SIGUSR2, "SIGUSR2"},
+                                                      {SIGXCPU, "SIGXCPU"},
+                                                      {SIGALRM, "SIGALRM"}};
+
     sigset_t
     stop_signals()
     {
       sigset_t set;
       sigemptyset(&set);
-      sigaddset(&set, SIGTERM);
-      sigaddset(&set, SIGINT);
-      sigaddset(&set, SIGHUP);
+      for (const auto &[s, name] : stops)
+        sigaddset(&set, s);
       return set;
+    }
+
+    std::string
+    signal_name(const int signal_number)
+    {
+      for (const auto &[s, name] : stops)
+        if (s == signal_number)
+          return name;
+      return std::to_string(signal_number);
     }
   } // namespace
 
   Interrupted::Interrupted(const int signal_number)
-    : std::runtime_error(
-        std::string("stopped by signal ") +
-        (signal_number == SIGTERM ? "SIGTERM" :
-         signal_number == SIGINT  ? "SIGINT" :
-         signal_number == SIGHUP  ? "SIGHUP" :
-                                    std::to_string(signal_number)))
+    : std::runtime_error("stopped by signal " + signal_name(signal_number))
     , signal_number(signal_number)
   {}
 
@@ -51,7 +71,7 @@ namespace glide
     // Restart interrupted system calls (writes): the run stops at its next
     // check, never in the middle of a file.
     action.sa_flags = SA_RESTART;
-    for (const int s : {SIGTERM, SIGINT, SIGHUP})
+    for (const auto &[s, name] : stops)
       sigaction(s, &action, nullptr);
   }
 

@@ -39,20 +39,6 @@ namespace glide
              s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
     }
 
-    /// What to tell the user about a failed write, from errno or an
-    /// error code.
-    std::string
-    advice(const int error)
-    {
-      std::string text = std::strerror(error);
-      if (error == ENOSPC || error == EDQUOT)
-        text += "; the disk is full: free space there or choose another "
-                "'Output/Directory'";
-      else if (error == EACCES || error == EPERM || error == EROFS)
-        text += "; choose an 'Output/Directory' you may write in";
-      return text;
-    }
-
     /// A disk with no free block left: a write there may have been cut
     /// short even if the writer (contact output) did not check.
     bool
@@ -78,6 +64,22 @@ namespace glide
       return "'" + p.string() + "'";
     }
   } // namespace
+
+  std::string
+  advice(const int error)
+  {
+    std::string text = std::strerror(error);
+    if (error == ENOSPC || error == EDQUOT)
+      text += "; the disk is full: free space there or choose another "
+              "'Output/Directory'";
+    else if (error == EFBIG)
+      text += "; the file size limit of the process (ulimit -f) was "
+              "reached: raise it, or write less (e.g. 'Output/Write VTU = "
+              "false')";
+    else if (error == EACCES || error == EPERM || error == EROFS)
+      text += "; choose an 'Output/Directory' you may write in";
+    return text;
+  }
 
 
 

@@ -228,20 +228,18 @@ namespace glide
             out.close();
             if (out.fail())
               failure = "Cannot write '" + output.path() + "/" + file +
-                        "': " + std::strerror(errno ? errno : EIO) +
-                        (errno == ENOSPC ? "; the disk is full: free space "
-                                           "there or choose another "
-                                           "'Output/Directory'" :
-                                           "") +
-                        ".";
+                        "': " + advice(errno ? errno : EIO) + ".";
           }
         else
           data_out.write_vtu_in_parallel(tmp, comm);
       }
     catch (const std::exception &)
       {
-        failure = "Cannot write '" + output.path() + "/" + file +
-                  "' (is the disk full?).";
+        // deal.II checks the stream itself (ExcIO): errno still tells why.
+        const int error = errno;
+        failure         = "Cannot write '" + output.path() + "/" + file +
+                  "': " + (error != 0 ? advice(error) : "(is the disk full?)") +
+                  ".";
       }
     if (root && !failure.empty())
       {

@@ -10,7 +10,8 @@ does not crash, and leaves the file system as it should:
 - --setup: an output directory prepared beforehand (a file where the
   directory should be, files of the user's in it, ...); the user's files
   must be unchanged afterwards and nothing else may appear;
-- --fault: a fault during a run (SIGTERM, SIGKILL, a full disk); then every
+- --fault: a fault during a run (SIGTERM, SIGKILL, SIGUSR1, SIGXCPU,
+  SIGQUIT, a full disk, the file size limit); then every
   file under its final name must be complete (.vtu/.pvd end with
   </VTKFile>, CSV rows are whole), every .pvd and statistics.csv must list
   the same load steps, every file an index lists must exist, and no *.tmp
@@ -50,7 +51,9 @@ ap.add_argument("--setup", default="none",
 ap.add_argument("--stdout", default="pipe", choices=["pipe", "closed", "full"])
 ap.add_argument("--mpirun", help="MPI launcher command, e.g. 'mpirun -np 2'")
 ap.add_argument("--copy-scene-as", help="run a copy of the scene file under this file name")
-ap.add_argument("--fault", choices=["sigterm", "sigkill", "disk-full"])
+ap.add_argument("--fault", choices=["sigterm", "sigkill", "disk-full", "sigusr1", "sigxcpu", "sigquit",
+                                    "file-size-limit"])
+ap.add_argument("--file-size-limit", type=int, default=200, help="KiB, for --fault file-size-limit")
 ap.add_argument("--after-rows", type=int, default=3, help="kill after this many statistics rows")
 ap.add_argument("--disk-size", default="160k", help="size of the tmpfs for --fault disk-full")
 ap.add_argument("--memory-limit", type=int, help="address-space limit of the run in MiB (out-of-memory tests)")
@@ -180,16 +183,29 @@ def limit_memory():
     resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
 
 
+def limit_file_size():
+    import resource
+    limit = a.file_size_limit * 1024
+    resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+
+
 def before_exec():
     if a.stdout == "closed":
         preexec()
     if a.memory_limit:
         limit_memory()
+    if a.fault == "file-size-limit":
+        limit_file_size()
+
+
+SIGNALS = {"sigterm": signal.SIGTERM, "sigkill": signal.SIGKILL, "sigusr1": signal.SIGUSR1,
+           "sigxcpu": signal.SIGXCPU, "sigquit": signal.SIGQUIT}
 
 
 p = subprocess.Popen(cmd, stdout=stdout_target(), stderr=subprocess.PIPE, text=True,
-                     preexec_fn=before_exec if (a.stdout == "closed" or a.memory_limit) else None)
-if a.fault in ("sigterm", "sigkill"):
+                     preexec_fn=before_exec if (a.stdout == "closed" or a.memory_limit
+                                                or a.fault == "file-size-limit") else None)
+if a.fault in SIGNALS:
     stats = os.path.join(out, name, "statistics.csv")
     deadline = time.time() + a.timeout
     while time.time() < deadline and p.poll() is None:
@@ -197,7 +213,7 @@ if a.fault in ("sigterm", "sigkill"):
             break
         time.sleep(0.02)
     check(p.poll() is None, "glide was still running when the signal was sent")
-    p.send_signal(signal.SIGTERM if a.fault == "sigterm" else signal.SIGKILL)
+    p.send_signal(SIGNALS[a.fault])
 try:
     stdout, stderr = p.communicate(timeout=a.timeout)
 except subprocess.TimeoutExpired:

@@ -8,7 +8,8 @@
 namespace glide
 {
   /**
-   * SIGTERM, SIGINT and SIGHUP stop a run cleanly: the handler only records
+   * SIGTERM, SIGINT, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, SIGXCPU and SIGALRM
+   * stop a run cleanly: the handler only records
    * the signal; the run checks for it at safe points (before each load step
    * and at each residual evaluation) and ends with an Interrupted exception,
    * after which `main` exits with status 128 + signal number, as a shell
@@ -26,7 +27,8 @@ namespace glide
     int signal_number;
   };
 
-  /// Install the handlers for SIGTERM, SIGINT and SIGHUP (once, in main).
+  /// Install the handlers for the signals that stop a run (once, when the
+  /// load steps begin).
   void
   install_interrupt_handlers();
 
@@ -43,7 +45,7 @@ namespace glide
   throw_if_interrupted(MPI_Comm comm);
 
   /**
-   * Blocks SIGTERM, SIGINT and SIGHUP for its lifetime (a signal that
+   * Blocks the signals that stop a run for its lifetime (a signal that
    * arrives meanwhile is delivered when it ends): the renames that publish
    * one step's indexes happen together.
    */

@@ -22,6 +22,12 @@ namespace glide
     {}
   };
 
+  /// What to tell the user about a failed write with the error code
+  /// @p error (errno): its text and, for a full disk, the file size limit
+  /// or a permission, what to do.
+  std::string
+  advice(const int error);
+
   /**
    * Collective: if @p failure is non-empty on any process, throw an
    * OutputError with the first such message on every process, so that no
