@@ -1240,8 +1240,8 @@ namespace glide
             std::ostringstream text;
             text << "the rigid master of contact pair '"
                  << pair.parameters->name << "' passed through " << n
-                 << " slave node(s) within the increment (open before and "
-                    "after it, their paths relative to the master run up to "
+                 << " slave node(s) within the increment (open after it, "
+                    "their paths relative to the master run up to "
                  << std::setprecision(3) << deepest
                  << " slave facet sizes deep through it)";
             why = text.str();

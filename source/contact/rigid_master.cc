@@ -223,13 +223,17 @@ namespace glide
     };
     const Tensor<1, dim> a = relative(x_old, t_old);
     const Tensor<1, dim> b = relative(x_new, t_new);
-    if (!(a.norm() > radius + clearance && b.norm() > radius + clearance))
+    if (!(b.norm() > radius + clearance))
       return 0.;
     const Tensor<1, dim> ab = b - a;
     const double         s  = ab.norm_square() > 0. ?
                                 std::clamp(-(a * ab) / ab.norm_square(), 0., 1.) :
                                 0.;
-    return std::max(0., radius - (a + s * ab).norm());
+    // Relative to the start's depth: a closed node that the master leaves
+    // (or a penalty node that started deep inside) has gone no deeper.
+    return std::max(0.,
+                    radius - (a + s * ab).norm() -
+                      std::max(0., radius - a.norm()));
   }
 
   template class RigidMaster<2>;

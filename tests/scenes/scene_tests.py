@@ -1279,7 +1279,9 @@ def case_rigid_master_passing_through():
     error (exit 2), and every step it converged carries a contact force.
     A circle pressed 0.02 deep (a third of a slave facet) into the block
     and slid by 3 over it in 4 steps is not a passage: the nodes it sweeps
-    dip into it by less than their facet size; no cut-back."""
+    dip into it by less than their facet size; no cut-back. A circle
+    driven through the block it presses fails the step too (nodes in
+    contact before it count)."""
     rows, log, _ = run(scene_file("rigid-punch.prm"), "Output/Write VTU=false",
                        "Contact pair punch/Rigid master/Point=0, 1.5",
                        "Contact pair punch/Rigid master/Translation=0; -4*t",
@@ -1290,6 +1292,20 @@ def case_rigid_master_passing_through():
           f"the first increment fails, naming the passage: {first}")
     check(len(rows) >= 1 and all(r["contact_punch_active"] > 0 and r["contact_punch_force_y"] < 0 for r in rows),
           f"every converged step carries a contact force: {[r['contact_punch_force_y'] for r in rows]}")
+    # Driven through the block it presses (-3 in y, the block 1 thick on a
+    # fixed bottom; an outside trial's case): the nodes in contact before
+    # the circle jumps past them count too. Until 2026-12-06 only nodes
+    # open at both ends did: the run ended with exit 0, 0 closed nodes and
+    # 0 force at load factors 0.875 and 1 with the circle inside the block.
+    rows, log, _ = run(scene_file("rigid-punch.prm"), "Output/Write VTU=false",
+                       "Contact pair punch/Rigid master/Translation=0; -3*t",
+                       name="driven_through", expect_status=2)
+    check("passed through" in log, "a step that passes the circle through nodes in contact fails")
+    touched = [i for i, r in enumerate(rows) if r["contact_punch_active"] > 0]
+    check(touched and all(r["contact_punch_active"] > 0 and r["contact_punch_force_y"] < 0
+                          for r in rows[touched[0]:]),
+          f"no converged step after the first contact is without force: "
+          f"{[(r['load_factor'], r['contact_punch_force_y']) for r in rows]}")
     rows, log, _ = run(scene_file("rigid-punch.prm"), "Output/Write VTU=false",
                        "Contact pair punch/Rigid master/Point=-1.5, 0.98",
                        "Contact pair punch/Rigid master/Translation=3*t; 0",

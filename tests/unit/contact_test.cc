@@ -93,9 +93,10 @@ TEST(RigidMaster, PrescribedMotion)
 // relative to the master the point goes from 2 below the centre to 1
 // above it, 0.2 beside the centre line: depth 0.5 - 0.2. The same for a
 // cylinder (the axial coordinate ignored) and a sphere, and the depth for
-// a master that turns and moves. Zero for a path that
-// stays outside, a point in contact (within the clearance) at one end, a
-// plane, and a slave inside a hole.
+// a master that turns and moves, for a point in contact at the start. Zero
+// for a path that stays outside, a point in contact (within the clearance)
+// at its end, a path no deeper than its start, a plane, and a slave inside
+// a hole.
 TEST(RigidMaster, PassageDepth)
 {
   auto p        = rigid(MasterType::rigid_circle);
@@ -123,6 +124,20 @@ TEST(RigidMaster, PassageDepth)
                 Point<2>(1., 0.), 0., Point<2>(1., -0.5 + 1e-12), 1., 0.),
               0.5,
               1e-9);
+  // In contact at the start (on the surface, (1, 1.5) below the centre
+  // (1, 2)) and passed through: the master's centre runs over it, so the
+  // path goes 0.5 deep (until 2026-12-06 only points open at both ends
+  // counted, and a circle driven through a block it pressed went
+  // unnoticed).
+  EXPECT_NEAR(
+    circle.passage_depth(Point<2>(1., 1.5), 0., Point<2>(1., 1.5), 1., 1e-9),
+    0.5,
+    1e-12);
+  // 0.1 inside at the start (a penalty's penetration) and left by the
+  // master: the path goes no deeper than where it started.
+  EXPECT_EQ(
+    circle.passage_depth(Point<2>(1., 1.6), 0., Point<2>(1., -2.), 1., 1e-9),
+    0.);
   // A quarter turn about the centre and a translation (0.2, 0): the point
   // fixed at (1, 2.55) is at (0, 0.55) from the centre in the master's
   // frame at t = 0 and at R(-pi/2) ((-0.2, 0.55)) = (0.55, 0.2) at t = 1;

@@ -73,14 +73,16 @@ namespace glide
      * How deep the straight path of a slave point relative to the master,
      * from @p x_old at load factor @p t_old to @p x_new at @p t_new (in
      * the master's own frame), goes into a circle, cylinder or sphere
-     * that the point is outside of at both ends: the radius less the
-     * path's closest distance to the centre (the axis). 0 where it stays
-     * outside, where a point is not more than @p clearance outside at
-     * either end (in contact there), for a plane and for a slave inside
-     * (a hole): there a point outside at both ends has never been inside. A
-     * master that passed through a slave node within one increment leaves it
-     * open at both ends; Contact::passed_through() compares this with the slave
-     * facet size.
+     * that the point is outside of at its end, beyond the depth it started
+     * at: the radius less the path's closest distance to the centre (the
+     * axis), less the start's depth if it started inside (in contact, or
+     * penetrating under penalty). 0 where the path stays outside, where the
+     * point ends not more than @p clearance outside (in contact), for a
+     * plane and for a slave inside (a hole: a point outside at its end has
+     * never been inside). A master that passed through a slave node within
+     * one increment leaves it open at its end, whether it was open or in
+     * contact before; Contact::passed_through() compares this with the
+     * slave facet size.
      */
     double
     passage_depth(const dealii::Point<dim> &x_old,
