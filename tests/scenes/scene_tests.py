@@ -1802,6 +1802,34 @@ def case_concentric_cylinders_anchors():
     check(n["y"] - (1 + u[k][1]) > -1e-6, f"no penetration at the plane ({n['y'] - (1 + u[k][1]):.2g})")
 
 
+def case_small_sliding_on_a_rigid_circle():
+    """R12.2 on an analytical master: parameters/rigid-punch.prm with
+    small sliding, the circle pressed 0.05 and then slid along the block.
+    Small sliding keeps each node on the tangent plane of its anchor, so a
+    slide is small only within the node's facet size (as on a meshed
+    master, one facet length) and where the circle turns by less than 10
+    degrees (R pi/18). Slid by 3 (off the block's end; an outside trial's
+    case) and by 0.1 (1.6 facets; the force is then 11.5 % above finite
+    sliding's) the log warns and names the nodes; until 2026-12-06 no
+    limit was set for analytical masters (the force grew to 35 times
+    finite sliding's in silence). Slid by 0.03, half a facet: no warning,
+    and the force is finite sliding's within 2 % (measured 1.0 %)."""
+    def slid(distance, steps, name, *more):
+        return run(scene_file("rigid-punch.prm"), "Output/Write VTU=false", "Load stepping/Number of steps=" + str(steps),
+                   f"Contact pair punch/Rigid master/Translation={distance}*max(0,2*t-1); -0.05*min(1,2*t)",
+                   *more, name=name)
+    for distance, steps in ((3, 20), (0.1, 4)):
+        rows, log, _ = slid(distance, steps, "far", "Contact pair punch/Sliding=small")
+        check(rows and rows[-1]["load_factor"] == 1, f"slid by {distance}: runs to the end")
+        check("small sliding is not small for" in log and "(0 0) slid" in log,
+              f"slid by {distance}: the warning names the nodes, among them (0, 0)")
+    rows, log, _ = slid(0.03, 4, "near", "Contact pair punch/Sliding=small")
+    check("small sliding is not small" not in log, "slid by 0.03: no warning")
+    finite, _, _ = slid(0.03, 4, "near_finite")
+    close(rows[-1]["contact_punch_force_y"], finite[-1]["contact_punch_force_y"], 0.02,
+          "slid by 0.03: the force of finite sliding")
+
+
 def case_excessive_sliding():
     """Issue 4, R11.3, R12.2: parameters/excessive-sliding.prm. A block is
     pressed onto a foundation of two bodies (left, right; master: both

@@ -6,6 +6,7 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <limits>
 #include <memory>
 #include <stdexcept>
 
@@ -90,6 +91,16 @@ namespace glide
                   const dealii::Point<dim> &x_new,
                   const double              t_new,
                   const double              clearance) const;
+
+    /// The radius of curvature of the master's surface: 'Radius' for a
+    /// circle, cylinder or sphere, infinite for a plane.
+    double
+    curvature_radius() const
+    {
+      return type == MasterType::rigid_plane ?
+               std::numeric_limits<double>::infinity() :
+               radius;
+    }
 
   private:
     /// Translation and rotation angle at load factor @p t.

@@ -106,10 +106,18 @@ namespace glide
     }
 
   private:
+    /// R12.2's limit of the slide from the anchor on an analytical rigid
+    /// master, for a slave node of facet size @p size: that size, less
+    /// where a circle, cylinder or sphere turns by 10 degrees (infinite
+    /// for a plane).
+    double
+    sliding_limit(const double size) const;
+
     /// Small-sliding anchor on an analytical rigid master: the closest
-    /// point of @p X and the master normal there (initial position).
+    /// point of @p X and the master normal there (initial position);
+    /// @p size is the node's facet size (sliding_limit()).
     typename SmallSliding<dim>::Anchor
-    rigid_anchor(const dealii::Point<dim> &X) const;
+    rigid_anchor(const dealii::Point<dim> &X, const double size) const;
 
     /// Surface-to-surface anchor on an analytical rigid master (R9.2 with
     /// the closest points as the landing points).
@@ -118,7 +126,8 @@ namespace glide
                      const std::vector<double>             &phi,
                      const dealii::Tensor<1, dim>          &slave_normal,
                      const std::array<bool, dim>           &symmetric,
-                     typename SmallSliding<dim>::Fallback  &reason) const;
+                     typename SmallSliding<dim>::Fallback  &reason,
+                     const double                           size) const;
 
     /// Surface-to-surface anchors (R9), with the fall-back to node to
     /// surface counted in the log (R9.4).
