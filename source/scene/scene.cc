@@ -886,6 +886,39 @@ namespace glide
                         "': in an axisymmetric scene the block must lie in "
                         "x = r >= 0; change 'Block/Lower corner'.");
           }
+        if (analysis == AnalysisType::axisymmetric && b.mesh.imported)
+          {
+            // A mesh file's nodes too (until 2026-12-06 accepted: the part
+            // at r < 0 counted with negative weight in every integral).
+            // Round-off below 1e-8 of the mesh's extent is the axis.
+            const auto  &vertices = b.mesh.imported->vertices;
+            double       extent = 0., lowest = 0.;
+            unsigned int n = 0, deepest = 0;
+            for (const auto &v : vertices)
+              extent = std::max({extent, std::abs(v[0]), std::abs(v[1])});
+            for (unsigned int k = 0; k < vertices.size(); ++k)
+              if (vertices[k][0] < -1e-8 * extent)
+                {
+                  ++n;
+                  if (vertices[k][0] < lowest)
+                    {
+                      lowest  = vertices[k][0];
+                      deepest = k;
+                    }
+                }
+            if (n > 0)
+              {
+                std::ostringstream text;
+                text << "Body '" << b.name << "': in an axisymmetric scene the "
+                     << "mesh must lie in x = r >= 0 (x is the radius), but "
+                     << n << " node(s) of the mesh file '" << b.mesh.file
+                     << "' lie at x < 0, the farthest at ("
+                     << vertices[deepest][0] << ", " << vertices[deepest][1]
+                     << "). Move the mesh to r >= 0, or model the part on one "
+                        "side of the axis only.";
+                throw InputError(text.str());
+              }
+          }
       }
   }
 
