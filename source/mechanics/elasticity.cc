@@ -5,6 +5,7 @@
 #include <glide/mechanics/rotation.h>
 #include <glide/scene/input_error.h>
 
+#include <deal.II/base/function_parser.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
@@ -21,6 +22,7 @@
 #include <map>
 #include <numeric>
 #include <sstream>
+#include <tuple>
 
 namespace glide
 {
@@ -309,7 +311,33 @@ namespace glide
         if (!body.rigid)
           continue;
         const std::string path = "Body " + body.name + "/Rigid body";
-        RigidBody         r;
+        // A rigid body moves as a whole: its motion is a function of the
+        // load factor only, as an analytical master's is (until 2026-12-06
+        // x and y were accepted and read at the origin, in silence).
+        for (const auto &[expression, n, entry] :
+             {std::make_tuple(body.rigid_translation,
+                              unsigned(dim),
+                              "Translation"),
+              std::make_tuple(body.rigid_rotation, 1u, "Rotation")})
+          if (!expression.empty())
+            {
+              FunctionParser<1> f(n);
+              const std::string error = parse_quietly([&]() {
+                f.initialize("t",
+                             Utilities::split_string_list(expression, ';'),
+                             {{"pi", numbers::PI}},
+                             false);
+                Vector<double> v(n);
+                f.vector_value(Point<1>(0.), v);
+              });
+              if (!error.empty())
+                throw InputError(
+                  "Parameter '" + path + "/" + entry + "' = '" + expression +
+                  "' is not a valid function of t: " + error +
+                  ". A rigid body moves as a whole, so its motion depends "
+                  "on the load factor t only.");
+            }
+        RigidBody r;
         r.translation =
           body.rigid_translation.empty() ?
             nullptr :
