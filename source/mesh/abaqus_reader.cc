@@ -573,6 +573,16 @@ namespace glide
           const Keyword     k    = parse_keyword(t);
           const std::size_t end  = data_end(i);
           const std::string name = k.name;
+          // Data in another file: glide reads the keywords it uses from
+          // this one only (until 2026-12-06 *ELEMENT, *NSET, *ELSET and
+          // *SURFACE with INPUT= were read as empty, in silence).
+          for (const char *used :
+               {"NODE", "ELEMENT", "NSET", "ELSET", "SURFACE"})
+            require(name != used || !k.has("INPUT"),
+                    where(l) + ": *" + name +
+                      ", INPUT=... is not read by glide; put the data lines "
+                      "into the file, or *INCLUDE, INPUT=<file> a file that "
+                      "holds the keyword line and its data.");
 
           if (name == "PART")
             {
@@ -638,10 +648,6 @@ namespace glide
                       where(l) + ": *NODE, SYSTEM=" + k.get("SYSTEM") +
                         " is not read by glide; give rectangular "
                         "coordinates (SYSTEM=R, the default).");
-              require(!k.has("INPUT"),
-                      where(l) + ": *NODE, INPUT=... is not read by glide; "
-                                 "put the nodes into the file or use "
-                                 "*INCLUDE.");
               Scope  &s    = scopes[scope];
               RawSet *nset = k.get("NSET").empty() ?
                                nullptr :
