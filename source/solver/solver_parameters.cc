@@ -93,9 +93,11 @@ namespace glide
                       "than this use amg.");
     prm.declare_entry("Relative tolerance",
                       "1e-8",
-                      Patterns::Double(0., 1.),
-                      "Relative residual reduction of the Krylov solver; "
-                      "KINSOL may ask for a looser one.");
+                      Patterns::Double(0., 0.5),
+                      "Relative residual reduction of the Krylov solver "
+                      "(at most 0.5: at 1 the solver returns no correction "
+                      "and Newton's iterates become NaN); KINSOL may ask for "
+                      "a looser one.");
     prm.declare_entry("Maximum iterations",
                       "2000",
                       Patterns::Integer(1),
