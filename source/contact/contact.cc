@@ -1122,9 +1122,12 @@ namespace glide
         // an anchor (small sliding), nodes held on one facet, constraints
         // that fell back to a simpler formulation.
         unsigned int active = 0, failed = 0, beyond = 0, unanchored = 0,
-                     prescribed     = 0;
-        unsigned int   incomplete   = 0;
-        double         normal_force = 0, penetration = 0;
+                     prescribed   = 0;
+        unsigned int incomplete   = 0;
+        double       normal_force = 0, penetration = 0;
+        // The slave nodes' own penetration (for averaged constraints, not
+        // their constraints' gap).
+        double         node_penetration = 0;
         Tensor<1, dim> force;
         const auto     s = constraints(pair, U);
         const auto     f = forces(pair, s, U);
@@ -1140,6 +1143,9 @@ namespace glide
             force += f[i].lambda * s[i].normal;
             if (s[i].found() || s[i].outcome == Outcome::prescribed)
               penetration = std::max(penetration, -s[i].gap);
+            if (s[i].found())
+              node_penetration =
+                std::max(node_penetration, -pair.formulation->own_gap(i, s[i]));
           }
         // The force on the master surface of a body (R14.6: the exact
         // reaction of the slave's): lambda times the force direction G in
@@ -1185,6 +1191,9 @@ namespace glide
                          format_number(Utilities::MPI::max(max_slip, comm)));
         row.emplace_back(p + "max_penetration",
                          format_number(Utilities::MPI::max(penetration, comm)));
+        row.emplace_back(p + "node_penetration",
+                         format_number(
+                           Utilities::MPI::max(node_penetration, comm)));
         const auto count = [&](const std::string &name, const unsigned int n) {
           row.emplace_back(p + name,
                            std::to_string(Utilities::MPI::sum(n, comm)));
@@ -1265,6 +1274,7 @@ namespace glide
         for (const auto &x : f)
           closed.push_back(x.closed);
         finer_master_facets(pair, s, closed);
+        hidden_penetration(pair, s, closed);
         if (!pair.prescribed_said)
           {
             std::vector<std::string> list;
@@ -1291,6 +1301,84 @@ namespace glide
           }
         pair.formulation->commit_step(U, s, closed, t_old, t_new);
       }
+  }
+
+  template <int dim>
+  void
+  Contact<dim>::hidden_penetration(Pair                               &pair,
+                                   const std::vector<Constraint<dim>> &s,
+                                   const std::vector<bool>            &closed)
+  {
+    if (pair.hidden_said)
+      return;
+    // A pair with no closed constraint carries no force: any penetration
+    // beyond a thousandth of a facet means that contact has begun unseen.
+    const bool none_closed =
+      Utilities::MPI::max(std::any_of(closed.begin(),
+                                      closed.end(),
+                                      [](const bool c) { return c; }) ?
+                            1 :
+                            0,
+                          comm) == 0;
+    const double ratio =
+      none_closed ? 1e-3 : static_cast<double>(hidden_penetration_ratio);
+    // (relative depth, depth, constraint's gap, position) of the deepest
+    // node beyond the ratio whose constraint shows less than that.
+    unsigned int          n = 0;
+    std::array<double, 4> deepest{{0., 0., 0., 0.}};
+    Point<dim>            where;
+    for (unsigned int i = 0; i < s.size(); ++i)
+      {
+        const auto &node = pair.nodes[i];
+        if (!s[i].found() || !(node.size > 0.))
+          continue;
+        const double depth = -pair.formulation->own_gap(i, s[i]);
+        if (depth > ratio * node.size && depth > -s[i].gap + ratio * node.size)
+          {
+            ++n;
+            if (depth / node.size > deepest[0])
+              {
+                deepest = {{depth / node.size, depth, s[i].gap, 0.}};
+                where   = s[i].x;
+              }
+          }
+      }
+    n = Utilities::MPI::sum(n, comm);
+    if (n == 0)
+      return;
+    pair.hidden_said = true;
+    // The deepest over all processes, with its position.
+    std::vector<double> mine(deepest.begin(), deepest.begin() + 3);
+    for (unsigned int d = 0; d < dim; ++d)
+      mine.push_back(where[d]);
+    std::vector<double> best;
+    for (const auto &v : Utilities::MPI::all_gather(comm, mine))
+      if (best.empty() || v[0] > best[0])
+        best = v;
+    if (Utilities::MPI::this_mpi_process(comm) != 0)
+      return;
+    std::ostringstream text;
+    text << std::setprecision(3) << "warning: contact pair '"
+         << pair.parameters->name << "': " << n
+         << " slave node(s) penetrate the master by more than " << 100. * ratio
+         << " % of their facet size beyond what their "
+         << (none_closed ? "constraints show, and none is closed: the pair "
+                           "carries no force" :
+                           "constraints show")
+         << "; the deepest at (";
+    for (unsigned int d = 0; d < dim; ++d)
+      text << (d ? ", " : "") << best[3 + d];
+    text << ") by " << best[1] << " (" << 100. * best[0]
+         << " % of its facet size; its constraint's gap is " << best[2]
+         << "). A surface-to-surface constraint's gap is the weighted mean "
+            "of the gaps over the node's region, which on a curved master "
+            "lies about h^2 / (3 R) above the node's own: slave facets this "
+            "coarse hide penetration, and contact that has begun "
+            "(statistics column 'contact_"
+         << pair.parameters->name
+         << "_node_penetration'). Refine the slave surface, or use "
+            "'Formulation = mortar' or 'node to surface'.";
+    messages.push_back(text.str());
   }
 
   template <int dim>

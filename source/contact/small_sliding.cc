@@ -728,6 +728,32 @@ namespace glide
   }
 
   template <int dim>
+  double
+  SmallSliding<dim>::landing_gap(const Anchor         &a,
+                                 const Point<dim>     &x,
+                                 const Tensor<1, dim> &normal) const
+  {
+    const auto             &positions = surface.get_positions();
+    std::array<double, dim> y;
+    std::array<std::array<double, dim>, dim - 1> A;
+    facet_point<double>(
+      a.facet,
+      a.xi,
+      [&](const unsigned int k) {
+        std::array<double, dim> p;
+        for (unsigned int d = 0; d < dim; ++d)
+          p[d] = positions[k][d];
+        return p;
+      },
+      y,
+      A);
+    double gap = 0.;
+    for (unsigned int d = 0; d < dim; ++d)
+      gap += (x[d] - y[d]) * normal[d];
+    return gap;
+  }
+
+  template <int dim>
   typename SmallSliding<dim>::Plane
   SmallSliding<dim>::plane(const Anchor &a, const Point<dim> &x) const
   {

@@ -240,6 +240,27 @@ namespace glide
   }
 
   template <int dim>
+  double
+  SmallSlidingFormulation<dim>::own_gap(const unsigned int     i,
+                                        const Constraint<dim> &s) const
+  {
+    const auto &a = anchors[i];
+    if (!a.found || !a.sts || !s.found())
+      return s.gap;
+    if (this->surface)
+      return planes->landing_gap(a, s.x, s.normal);
+    // An analytical master: the node's own gap to it.
+    try
+      {
+        return this->master->project(s.x).gap;
+      }
+    catch (const UndefinedNormal &)
+      {
+        return s.gap;
+      }
+  }
+
+  template <int dim>
   unsigned int
   SmallSlidingFormulation<dim>::n_fallbacks() const
   {

@@ -1830,6 +1830,43 @@ def case_small_sliding_on_a_rigid_circle():
           "slid by 0.03: the force of finite sliding")
 
 
+def case_surface_to_surface_coarse_slave_hides_penetration():
+    """R16.3, R9: surface to surface averages the gaps of a node's region;
+    on a curved master that mean lies about h^2/(3R) above the node's own
+    gap. parameters/hertz-3d-elastic.prm with coarse surfaces (sphere
+    local refinements 2, block 1: slave facets 0.25 at the contact point;
+    an outside trial's case): the sphere is pushed 0.02 into the block and
+    the pair never closes a constraint (the averaged gap at the contact
+    point starts at +0.0221). Until 2026-12-06 this ended with no force,
+    max_penetration 0 and no word. It is a limit of the formulation, now
+    reported: node_penetration (the nodes' own gap) gives the press, 0.02
+    at the end, 0.005 per step, and a warning names the deepest node from
+    the first step. Node to surface on the same mesh carries the contact
+    (its node_penetration is its max_penetration, and it gives no such
+    warning); the shipped refinement with surface to surface gives none
+    either."""
+    coarse = ("Body sphere/Refinement/Local refinements=2", "Body block/Refinement/Local refinements=1")
+    s2s = ("Contact pair hertz/Formulation=surface to surface", "Contact pair hertz/Sliding=small")
+    rows, log, _ = run(scene_file("hertz-3d-elastic.prm"), "Output/Write VTU=false", *coarse, *s2s, name="coarse_s2s")
+    check(len(rows) == 4 and all(r["contact_hertz_active"] == 0 for r in rows),
+          "no constraint closes (the formulation's limit)")
+    for k, r in enumerate(rows):
+        close(r["contact_hertz_node_penetration"], 0.005 * (k + 1), 0.05,
+              f"step {k + 1}: node_penetration is the press")
+    warned = [line for line in log.splitlines() if "penetrate the master by more than" in line]
+    check(len(warned) == 1 and "none is closed: the pair carries no force" in warned[0]
+          and "the deepest at (0, " in warned[0] and log.index(warned[0]) < log.index("Step 2:"),
+          f"one warning, in the first step, naming the node at the origin: {warned}")
+    rows, log, _ = run(scene_file("hertz-3d-elastic.prm"), "Output/Write VTU=false", *coarse, name="coarse_nts")
+    check(rows[-1]["contact_hertz_active"] > 0 and "penetrate the master by more than" not in log,
+          "node to surface on the same mesh: in contact, no such warning")
+    check(all(r["contact_hertz_node_penetration"] == r["contact_hertz_max_penetration"] for r in rows),
+          "node to surface: node_penetration is max_penetration")
+    rows, log, _ = run(scene_file("hertz-3d-elastic.prm"), "Output/Write VTU=false", *s2s, name="shipped_s2s")
+    check(rows[-1]["contact_hertz_active"] > 0 and "penetrate the master by more than" not in log,
+          "surface to surface on the shipped refinement: in contact, no such warning")
+
+
 def case_excessive_sliding():
     """Issue 4, R11.3, R12.2: parameters/excessive-sliding.prm. A block is
     pressed onto a foundation of two bodies (left, right; master: both

@@ -329,6 +329,10 @@ namespace glide
       /// The log has named the slave nodes that a boundary condition holds
       /// along the contact normal (mark_prescribed(); once per run).
       bool prescribed_said = false;
+      /// The log has said that slave nodes penetrate the master beyond
+      /// what their averaged constraints show (hidden_penetration(); once
+      /// per run).
+      bool hidden_said = false;
       /// Under MPI (R15.2): how far slave nodes and master may move (the
       /// largest motion of each, summed) from where the master facets
       /// were gathered before a search could reach facets not held here
@@ -475,6 +479,22 @@ namespace glide
     finer_master_facets(Pair                               &pair,
                         const std::vector<Constraint<dim>> &s,
                         const std::vector<bool>            &closed);
+
+    /// After a converged step: warn (once per pair) where a slave node
+    /// penetrates the master by more than hidden_penetration_ratio of its
+    /// facet size (a thousandth where no constraint of the pair is
+    /// @p closed: it carries no force) beyond what its constraint's gap,
+    /// averaged over a region (surface to surface), shows
+    /// (doc/theory/small-sliding.md: coarse slave facets on a curved master
+    /// hide penetration, and contact that has begun).
+    void
+    hidden_penetration(Pair                               &pair,
+                       const std::vector<Constraint<dim>> &s,
+                       const std::vector<bool>            &closed);
+
+    /// Penetration of a slave node, relative to its facet size, that its
+    /// averaged constraint does not show, beyond which the log warns.
+    static constexpr double hidden_penetration_ratio = 0.05;
 
     double stabilize = 1.;
 

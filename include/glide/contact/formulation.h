@@ -240,6 +240,17 @@ namespace glide
     virtual unsigned int
     n_fallbacks() const;
 
+    /// The gap of slave node @p i itself at the state of its constraint
+    /// @p s: for an averaged constraint (surface to surface) its distance
+    /// to where it lands on the master, along the constraint's normal;
+    /// otherwise the constraint's gap.
+    virtual double
+    own_gap(const unsigned int i, const Constraint<dim> &s) const
+    {
+      (void)i;
+      return s.gap;
+    }
+
     /// The facet of master_surface() whose nodes take the force of
     /// constraint @p s of node @p i (node to surface: the projection's;
     /// small sliding: the anchor's), -1 where there is none.

@@ -185,6 +185,16 @@ namespace glide
     Plane
     plane(const Anchor &a, const dealii::Point<dim> &x) const;
 
+    /// Surface to surface: the gap of the constraint's own slave node at
+    /// @p x to the master point where it landed at set-up (a.facet, a.xi),
+    /// at the current positions, along @p normal. The constraint's gap is
+    /// the region's weighted mean, which on a convex master lies about
+    /// h^2 / (3 R) above this one.
+    double
+    landing_gap(const Anchor                 &a,
+                const dealii::Point<dim>     &x,
+                const dealii::Tensor<1, dim> &normal) const;
+
     /// Current load-transfer weights over `a.list` for a slave node at @p x
     /// (R11.2).
     std::vector<double>

@@ -62,6 +62,8 @@ namespace glide
 
     unsigned int
     n_fallbacks() const override;
+    double
+    own_gap(const unsigned int i, const Constraint<dim> &s) const override;
     int
     touched_facet(const unsigned int i, const Constraint<dim> &s) const override
     {
