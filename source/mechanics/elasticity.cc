@@ -1529,6 +1529,7 @@ namespace glide
     // Bodies in a contact pair: contact may hold them (if it closes).
     std::set<std::string>                           in_contact;
     std::map<std::string, std::vector<std::string>> contact_surfaces;
+    std::set<types::boundary_id>                    contact_ids;
     bool                                            node_set_slave = false;
     for (const auto &cp : scene.contact_pairs)
       for (const auto &list : {cp.slave, cp.master})
@@ -1546,6 +1547,10 @@ namespace glide
                     std::find(names.begin(), names.end(), surface) ==
                       names.end())
                   names.push_back(surface);
+                if (mesh.has_surface(surface))
+                  for (const auto id :
+                       mesh.surface(surface, "Contact pair " + cp.name))
+                    contact_ids.insert(id);
               }
           }
     const auto motions = free_motions();
@@ -1615,7 +1620,7 @@ namespace glide
         ++n_parts[b];
       if (*std::max_element(n_parts.begin(), n_parts.end()) > 1)
         {
-          const auto part_motions = free_motions_of(
+          const auto part_of =
             [&](const typename DoFHandler<dim>::active_cell_iterator &cell) {
               // Its coarse ancestor (deal.II 9.4 keeps the map from
               // coarse cell id to index private).
@@ -1623,8 +1628,26 @@ namespace glide
               while (c->level() > 0)
                 c = c->parent();
               return p.part_of_coarse_cell[c->index()];
-            },
-            p.body);
+            };
+          const auto part_motions = free_motions_of(part_of, p.body);
+          // The parts with a face on a contact surface: contact may hold
+          // those, not a part of the same body that no pair touches (until
+          // 2026-12-06 any part of a body in a pair counted as held by
+          // contact, and an unheld one ran, or failed with a note that
+          // blamed open contact).
+          std::vector<unsigned int> touches(p.body.size(), 0);
+          for (const auto &cell : dof_handler.active_cell_iterators())
+            if (cell->is_locally_owned())
+              for (const auto f : cell->face_indices())
+                if (cell->at_boundary(f) &&
+                    contact_ids.count(cell->face(f)->boundary_id()) > 0)
+                  touches[part_of(cell)] = 1;
+          MPI_Allreduce(MPI_IN_PLACE,
+                        touches.data(),
+                        static_cast<int>(touches.size()),
+                        MPI_UNSIGNED,
+                        MPI_MAX,
+                        comm);
           for (unsigned int k = 0; k < p.body.size(); ++k)
             {
               const unsigned int b = p.body[k];
@@ -1645,7 +1668,7 @@ namespace glide
                 " separate parts (cells that share no vertex, e.g. meshed "
                 "apart in its mesh file), and its part around (" +
                 center + ")";
-              if (in_contact.count(name) || node_set_slave)
+              if (touches[k] > 0 || node_set_slave)
                 {
                   holding_hints.push_back(
                     what + " is held against its " + list +
@@ -1658,7 +1681,10 @@ namespace glide
                 file + "B" + what.substr(1) +
                 " is not held: nothing stops its " + list +
                 " (no fixed, displacement or symmetry condition acts on "
-                "that part). Hold each part with a boundary condition on a "
+                "that part" +
+                (in_contact.count(name) ? ", and no contact pair touches it" :
+                                          "") +
+                "). Hold each part with a boundary condition on a "
                 "surface of it, join the parts in the mesh, or make each "
                 "part a body of its own.");
             }
