@@ -832,6 +832,28 @@ namespace glide
             "without contact ('Contact pairs' empty): the manufactured "
             "solution knows no contact forces, so its error columns would "
             "be meaningless.");
+    // Its boundary values are those of 'displacement' conditions on every
+    // component; any other condition (fixed, symmetry, a traction, a
+    // component left free) holds the body to other values, and the error
+    // columns measured the mismatch (until 2026-12-06: 'fixed' instead of
+    // 'displacement' tripled the L2 error).
+    if (manufactured_solution != "none")
+      for (const auto &bc : boundary_conditions)
+        {
+          bool all = true;
+          for (unsigned int d = 0; d < dimension; ++d)
+            all = all && bc.components[d];
+          require(bc.type == BoundaryConditionType::displacement && all,
+                  "Parameter 'Verification/Manufactured solution' takes the "
+                  "boundary values from the manufactured solution on "
+                  "'Type = displacement' conditions on all components only, "
+                  "but 'Boundary condition " +
+                    bc.name +
+                    "' is another kind or leaves a component free, so the "
+                    "error columns would measure the mismatch. Make it 'Type "
+                    "= displacement' with every component (its 'Function' "
+                    "is then not used), or remove it.");
+        }
 
     // Every result file's name fits the file systems' limit of 255 bytes
     // (NAME_MAX), with room for 6-digit step numbers and the '.tmp' of a
