@@ -1504,6 +1504,190 @@ namespace glide
 
   template <int dim>
   void
+  Elasticity<dim>::check_conditions(const double t)
+  {
+    condition_notes.clear();
+    if (exact)
+      return;
+    const double tol = 1e-12 * mesh.scene_size();
+    // Per DoF: the value and the condition (index in `dirichlet`) that
+    // holds it. The axis of an axisymmetric scene counts as a condition
+    // u_r = 0 after all others, as constraints_at() applies it.
+    std::map<types::global_dof_index, std::pair<double, unsigned int>> held;
+    const unsigned int n  = dirichlet.size();
+    const unsigned int nc = n + 1; // + the axis
+    // For each pair (earlier, later): DoFs with different values, and an
+    // example; for each condition: DoFs it holds.
+    std::vector<unsigned int> differ(nc * nc, 0), holds(nc, 0);
+    std::vector<std::string>  example(nc * nc);
+    // The first DoF of each pair with different values, and the values.
+    std::map<unsigned int, std::tuple<types::global_dof_index, double, double>>
+               first;
+    const auto record = [&](const types::global_dof_index i,
+                            const double                  value,
+                            const unsigned int            k) {
+      if (!owned.is_element(i))
+        return;
+      const auto it = held.find(i);
+      if (it == held.end())
+        {
+          held[i] = {value, k};
+          ++holds[k];
+          return;
+        }
+      const auto [v0, k0] = it->second;
+      if (std::abs(value - v0) <=
+          tol + 1e-9 * std::max(std::abs(value), std::abs(v0)))
+        return;
+      if (differ[k0 * nc + k]++ == 0)
+        first[k0 * nc + k] = {i, v0, value};
+    };
+    {
+      for (unsigned int k = 0; k < n; ++k)
+        {
+          const auto                  &d    = dirichlet[k];
+          const auto                  &bc   = *d.parameters;
+          const ComponentMask          mask = component_mask(bc);
+          Functions::ZeroFunction<dim> zero(dim);
+          const Function<dim>         *f = &zero;
+          if (bc.type == BoundaryConditionType::displacement)
+            {
+              d.function->set_time(t);
+              f = d.function.get();
+            }
+          if (d.on_node_set)
+            {
+              Vector<double> value(dim);
+              for (const auto &[node_dofs, x] : d.nodes)
+                {
+                  f->vector_value(x, value);
+                  for (unsigned int c = 0; c < dim; ++c)
+                    if (mask[c])
+                      record(node_dofs[c], value[c], k);
+                }
+            }
+          if (d.ids.empty())
+            continue;
+          std::map<types::boundary_id, const Function<dim> *> functions;
+          for (const auto id : d.ids)
+            functions[id] = f;
+          std::map<types::global_dof_index, double> values;
+          VectorTools::interpolate_boundary_values(
+            *mapping, dof_handler, functions, values, mask);
+          for (const auto &[i, v] : values)
+            record(i, v, k);
+        }
+      if (axisymmetric)
+        {
+          const double tol_axis = 1e-10 * mesh.scene_size();
+          std::vector<types::global_dof_index> dofs(fe.n_dofs_per_face());
+          for (const auto &cell : dof_handler.active_cell_iterators())
+            if (cell->is_locally_owned())
+              for (const auto f : cell->face_indices())
+                {
+                  const auto face    = cell->face(f);
+                  bool       on_axis = true;
+                  for (const auto v : face->vertex_indices())
+                    on_axis =
+                      on_axis && std::abs(face->vertex(v)[0]) < tol_axis;
+                  if (!on_axis)
+                    continue;
+                  face->get_dof_indices(dofs);
+                  for (unsigned int i = 0; i < dofs.size(); ++i)
+                    if (fe.face_system_to_component_index(i).first == 0)
+                      record(dofs[i], 0., n);
+                }
+        }
+    }
+    if (!first.empty())
+      {
+        // Where those DoFs are: their cells' support points.
+        std::map<types::global_dof_index, std::pair<unsigned int, Point<dim>>>
+                                             where;
+        std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+        for (const auto &[p, v] : first)
+          where[std::get<0>(v)] = {0, Point<dim>()};
+        const auto &unit = fe.get_unit_support_points();
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              cell->get_dof_indices(dofs);
+              for (unsigned int j = 0; j < dofs.size(); ++j)
+                if (const auto w = where.find(dofs[j]); w != where.end())
+                  w->second = {fe.system_to_component_index(j).first,
+                               mapping->transform_unit_to_real_cell(cell,
+                                                                    unit[j])};
+            }
+        for (const auto &[p, v] : first)
+          {
+            const auto &[i, v0, v1] = v;
+            const auto &[c, x]      = where[i];
+            std::ostringstream text;
+            text << std::setprecision(4) << "component "
+                 << "xyz"[c] << " at (";
+            for (unsigned int d = 0; d < dim; ++d)
+              text << (d ? ", " : "") << x[d];
+            text << "): " << v0 << " and " << v1;
+            example[p] = text.str();
+          }
+      }
+    for (auto *v : {&differ, &holds})
+      MPI_Allreduce(MPI_IN_PLACE,
+                    v->data(),
+                    static_cast<int>(v->size()),
+                    MPI_UNSIGNED,
+                    MPI_SUM,
+                    comm);
+    // An example for each pair, from the first process that has one.
+    for (unsigned int p = 0; p < nc * nc; ++p)
+      if (differ[p] > 0)
+        for (const auto &e : Utilities::MPI::all_gather(comm, example[p]))
+          if (!e.empty())
+            {
+              example[p] = e;
+              break;
+            }
+    const auto name = [&](const unsigned int k) {
+      return "'Boundary condition " + dirichlet[k].parameters->name + "'";
+    };
+    for (unsigned int k0 = 0; k0 < n; ++k0)
+      if (differ[k0 * nc + n] > 0)
+        throw InputError(
+          "In scene file '" + scene.file + "': " + name(k0) +
+          " prescribes a radial displacement other than 0 on the axis of "
+          "the axisymmetric scene (r = 0; " +
+          example[k0 * nc + n] +
+          "), where u_r = 0 holds for a solid of revolution. Leave the "
+          "radial component free there ('Components'), or move the "
+          "condition off the axis.");
+    for (unsigned int k = 0; k < n; ++k)
+      for (unsigned int k0 = 0; k0 < n; ++k0)
+        if (differ[k0 * nc + k] > 0)
+          {
+            if (holds[k] == 0)
+              throw InputError(
+                "In scene file '" + scene.file + "': " + name(k) +
+                " has no effect: " + name(k0) +
+                ", earlier in 'Boundary conditions', prescribes its DoFs "
+                "with other values (" +
+                std::to_string(differ[k0 * nc + k]) + " DoF(s), e.g. " +
+                example[k0 * nc + k] +
+                "), and the first condition of a DoF holds. Remove one of "
+                "the two, or put them on different surfaces or "
+                "components.");
+            condition_notes.push_back(
+              name(k0) + " and " + name(k) +
+              " prescribe different values for " +
+              std::to_string(differ[k0 * nc + k]) +
+              " DoF(s) they share (e.g. " + example[k0 * nc + k] + "); " +
+              name(k0) +
+              ", earlier in 'Boundary conditions', holds there. Check that "
+              "this is meant (e.g. a corner shared by two surfaces).");
+          }
+  }
+
+  template <int dim>
+  void
   Elasticity<dim>::check_inputs()
   {
     const std::string file = "In scene file '" + scene.file + "': ";
@@ -1797,6 +1981,7 @@ namespace glide
               "): positions then keep no digit of the meshes' geometry. "
               "Check the displacements' units and the rigid bodies' "
               "'Rotation center'.");
+    check_conditions(1.);
     for (const auto &cp : scene.contact_pairs)
       if (cp.enforcement == Enforcement::penalty && cp.penalty_stiffness > 0)
         require(!(cp.penalty_stiffness * L >

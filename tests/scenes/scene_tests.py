@@ -1867,6 +1867,39 @@ def case_surface_to_surface_coarse_slave_hides_penetration():
           "surface to surface on the shipped refinement: in contact, no such warning")
 
 
+def case_conditions_sharing_a_corner():
+    """P2.1: two conditions that prescribe different values for DoFs they
+    share (tests/scenes/block.prm: 'bottom' fixed, 'load' a displacement
+    0.1 in x on the left side; they share the corner (0, 0)): the first in
+    'Boundary conditions' holds there, as deal.II keeps a DoF's first
+    constraint, and the log says so once, naming both and the corner
+    (until 2026-12-06 nothing was said). The run goes on: the corner's
+    u_x is 0 (the reaction of 'bottom' carries it). With the order of the
+    conditions swapped, 'load' holds the corner. Conditions that agree
+    there (u_x = 0.1 t y on the left) give no warning."""
+    rows, log, out = run(scene("block.prm"), "Boundary condition load/Surface=block.left",
+                         "Boundary condition load/Type=displacement", "Boundary condition load/Components=x",
+                         "Boundary condition load/Function=0.1*t; 0", name="corner")
+    said = [line for line in log.splitlines() if "prescribe different values" in line]
+    check(len(said) == 1 and "'Boundary condition bottom' and 'Boundary condition load' prescribe different "
+          "values for 1 DoF(s) they share (e.g. component x at (0, 0): 0 and 0.1)" in said[0],
+          f"one warning naming both conditions and the corner: {said}")
+    X, u = last_vtu(out, "corner")
+    k = [i for i in range(len(X)) if abs(X[i][0]) < 1e-9 and abs(X[i][1]) < 1e-9][0]
+    check(abs(u[k][0]) < 1e-12, f"'bottom' holds the corner: u_x = {u[k][0]}")
+    rows, log, out = run(scene("block.prm"), "Boundary conditions=load, bottom",
+                         "Boundary condition load/Surface=block.left",
+                         "Boundary condition load/Type=displacement", "Boundary condition load/Components=x",
+                         "Boundary condition load/Function=0.1*t; 0", name="swapped")
+    X, u = last_vtu(out, "swapped")
+    check("'Boundary condition load' and 'Boundary condition bottom' prescribe different values" in log
+          and abs(u[k][0] - 0.1) < 1e-6, f"swapped: 'load' holds the corner: u_x = {u[k][0]}")
+    rows, log, _ = run(scene("block.prm"), "Boundary condition load/Surface=block.left",
+                       "Boundary condition load/Type=displacement", "Boundary condition load/Components=x",
+                       "Boundary condition load/Function=0.1*t*y; 0", "Output/Write VTU=false", name="agree")
+    check("prescribe different values" not in log, "conditions that agree at the corner: no warning")
+
+
 def case_excessive_sliding():
     """Issue 4, R11.3, R12.2: parameters/excessive-sliding.prm. A block is
     pressed onto a foundation of two bodies (left, right; master: both

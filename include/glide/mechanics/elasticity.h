@@ -203,6 +203,15 @@ namespace glide
     void
     check_inputs();
 
+    /// Warnings about the scene's conditions for the log, from
+    /// check_inputs() (conditions that prescribe different values for the
+    /// same DoF).
+    const std::vector<std::string> &
+    condition_warnings() const
+    {
+      return condition_notes;
+    }
+
     /// For a failed load step: bodies that only contact holds, with the
     /// motions nothing else stops (empty if every body is held).
     std::string
@@ -415,6 +424,17 @@ namespace glide
     std::vector<dealii::types::boundary_id>                   symmetry_ids[3];
     std::map<std::string, const NodeSetParameters *>          scene_node_sets;
     std::vector<std::string>                                  holding_hints;
+    std::vector<std::string>                                  condition_notes;
+
+    /// Collective, at load factor @p t: conditions that prescribe
+    /// different values for the same DoF (the first in 'Boundary
+    /// conditions' holds there, as deal.II keeps a DoF's first
+    /// constraint). A condition that holds none of its DoFs and differs
+    /// from an earlier one, and a radial displacement other than 0 on the
+    /// axis of an axisymmetric scene, are input errors; a partial overlap
+    /// (a corner shared by two surfaces) is a warning.
+    void
+    check_conditions(const double t);
     /// free_motions() of groups of cells: @p group gives a cell's group,
     /// @p body_of each group's body.
     std::vector<std::vector<FreeMotion>>
