@@ -276,91 +276,92 @@ namespace glide
       const std::string includer =
         included ? "' (included by '" + chain.back().first + "')" : "'";
       chain.emplace_back(file, canonical);
-      std::string  line;
-      bool         continued = false;
-      unsigned int n_lines   = 0;
+      std::string line;
+      bool        continued = false;
       // deal.II read each included file on its own and refused one that
       // does not close the subsections it opens: an 'end' left out there
       // would otherwise put the rest of the including file into that
       // subsection, and the message would name an entry of the including
       // file. The lines of the subsections this file opened and has not
       // closed, from its statements (continued lines joined).
-      std::string               joined;
       std::vector<unsigned int> opened;
-      const auto                check_balance = [&](const unsigned int n) {
-        std::string s = joined;
-        if (const auto hash = s.find('#'); hash != std::string::npos)
-          s.erase(hash);
-        s = Utilities::trim(s);
+      const auto                check_balance = [&](const std::string &s,
+                                     const unsigned int n) {
         if (s.rfind("subsection ", 0) == 0 || s.rfind("SUBSECTION ", 0) == 0)
           opened.push_back(n);
-        else if (s.rfind("end", 0) == 0 || s.rfind("END", 0) == 0)
+        else if (s == "end" || s == "END" || s.rfind("end ", 0) == 0 ||
+                 s.rfind("END ", 0) == 0)
           {
             require(!opened.empty(),
                     "Line " + std::to_string(n) + " of the scene file '" +
                       file + includer +
-                      ": this 'end' closes a subsection that the including "
-                                     "file opened. An included file must close exactly the "
-                                     "subsections it opens; move the 'end' to the including "
-                                     "file, after the 'include'.");
+                      ": this 'end' closes no subsection that this file "
+                                     "opened. An included file must close exactly the "
+                                     "subsections it opens (deal.II reads each file on its "
+                                     "own); remove the 'end', or put it and its "
+                                     "'subsection' into one file.");
             opened.pop_back();
           }
       };
+      // The physical lines of the statement being read (deal.II joins a
+      // line that ends in a backslash with the next before it removes
+      // comments: a continued comment swallows the next line), with the
+      // number of its first line.
+      std::string  joined, pending;
+      unsigned int first = 0, n_pending = 0;
+      const auto   finish = [&]() {
+        std::string statement = joined;
+        if (const auto hash = statement.find('#'); hash != std::string::npos)
+          statement.erase(hash);
+        statement = Utilities::trim(statement);
+        joined.clear();
+        if (included)
+          check_balance(statement, first);
+        if (statement.rfind("include ", 0) == 0 ||
+            statement.rfind("INCLUDE ", 0) == 0)
+          {
+            const std::string name = Utilities::trim(statement.substr(8));
+            if (!name.empty())
+              {
+                expand_includes(include_path(file, name), chain, text, origins);
+                pending.clear();
+                n_pending = 0;
+                return;
+              }
+          }
+        text += pending;
+        for (unsigned int k = 0; k < n_pending; ++k)
+          origins.emplace_back(file, first + k);
+        pending.clear();
+        n_pending = 0;
+      };
       for (unsigned int n = 1; std::getline(in, line); ++n)
         {
-          n_lines = n;
           if (n == 1 && line.rfind(byte_order_mark, 0) == 0)
             line.erase(0, 3);
-          // As deal.II reads a line: tabs as spaces, without a CR. It
-          // joins a line that ends in a backslash with the next before it
-          // removes comments, so a continued comment swallows the next
-          // line, and a line that continues another is no statement of
-          // its own.
+          // As deal.II reads a line: tabs as spaces, without a CR.
           std::string statement = line;
           if (!statement.empty() && statement.back() == '\r')
             statement.pop_back();
           std::replace(statement.begin(), statement.end(), '\t', ' ');
-          statement               = Utilities::trim(statement);
-          const bool continuation = continued;
+          statement = Utilities::trim(statement);
+          if (n_pending == 0)
+            first = n;
+          pending += line + "\n";
+          ++n_pending;
           continued = !statement.empty() && statement.back() == '\\';
           joined +=
             continued ? statement.substr(0, statement.size() - 1) : statement;
           if (!continued)
-            {
-              if (included)
-                check_balance(n);
-              joined.clear();
-            }
-          if (const auto hash = statement.find('#'); hash != std::string::npos)
-            statement.erase(hash);
-          statement = Utilities::trim(statement);
-          if (!continuation && !continued &&
-              (statement.rfind("include ", 0) == 0 ||
-               statement.rfind("INCLUDE ", 0) == 0))
-            {
-              const std::string name = Utilities::trim(statement.substr(8));
-              if (!name.empty())
-                {
-                  expand_includes(include_path(file, name),
-                                  chain,
-                                  text,
-                                  origins);
-                  continue;
-                }
-            }
-          text += line + "\n";
-          origins.emplace_back(file, n);
+            finish();
         }
-      // deal.II joins a line that ends in a backslash with the next; it
-      // read each included file on its own, so the join ends with the
-      // file (an empty line ends it).
+      // deal.II read each included file on its own, so a join ends with
+      // the file (an empty line ends it).
       if (continued)
         {
-          text += "\n";
-          origins.emplace_back(file, n_lines);
-          if (included)
-            check_balance(n_lines);
-          joined.clear();
+          pending += "\n";
+          ++n_pending;
+          finish();
         }
       require(opened.empty(),
               "The scene file '" + file + includer + " leaves " +

@@ -1342,9 +1342,11 @@ def case_include_relative_to_the_including_file():
     # a newline) in a comment continued by a backslash, which deal.II ends
     # with the file, so the include after it in scene.prm is read; a
     # backslash-continued line that starts with 'include' is part of the
-    # line before it (a comment here), not an include.
+    # line before it (a comment here), not an include; an include continued
+    # into a comment is an include, relative to the including file too.
     with open(os.path.join(directory, "scene.prm"), "w") as f:
-        f.write("include\tparts/patch.prm\n# continued \\\ninclude nowhere.prm\ninclude parts/linked/steps.prm\n")
+        f.write("include\tparts/patch.prm\n# continued \\\ninclude nowhere.prm\n"
+                "include parts/linked/steps.prm \\\n  # the include continued into a comment\n")
     with open(os.path.join(directory, "parts", "patch.prm"), "w") as f:
         f.write(open(scene_file("patch-test.prm")).read() + "\n# the end of the part \\")
     # parts/linked is a symbolic link to other/deeper; steps.prm there
