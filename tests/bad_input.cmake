@@ -155,9 +155,9 @@ glide_bad_input(fault.disk_full --fault disk-full --disk-size 160k --status 4 --
 # A result file that reaches the process's file size limit (ulimit -f)
 # is an input/output error that says so; until 2026-12-06 SIGXFSZ ended
 # glide in the middle of the file.
-# (MPI's start-up needs files of a few MiB, so the limit is 4 MiB and the
-# block's VTU about 5 MiB.)
-glide_bad_input(fault.file_size_limit --fault file-size-limit --file-size-limit 4096 --status 4
+# (MPI's start-up needs files of a few MiB, so the limit is 8 MiB and the
+# block's VTU about 20 MiB.)
+glide_bad_input(fault.file_size_limit --fault file-size-limit --file-size-limit 8192 --status 4
   --expect "input/output error: .*File too large%3B the file size limit of the process \\(ulimit -f\\) was reached"
-  -- ${BLOCK} --set "Body block/Block/Subdivisions=240, 120" --set "Load stepping/Number of steps=2")
+  -- ${BLOCK} --set "Body block/Block/Subdivisions=480, 240" --set "Load stepping/Number of steps=1")
 glide_bad_input(fault.disk_full_contact --fault disk-full --disk-size 1m --status 4 --expect "input/output error: .*(disk.* full|cut short)" -- ${LONG_PUNCH})

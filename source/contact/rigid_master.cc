@@ -225,15 +225,64 @@ namespace glide
     const Tensor<1, dim> b = relative(x_new, t_new);
     if (!(b.norm() > radius + clearance))
       return 0.;
-    const Tensor<1, dim> ab = b - a;
-    const double         s  = ab.norm_square() > 0. ?
-                                std::clamp(-(a * ab) / ab.norm_square(), 0., 1.) :
-                                0.;
+    // The closest approach to the centre (axis) along the path: the node
+    // moves straight from x_old to x_new while the master moves by its
+    // prescribed motion. Without a turn in the increment the path in the
+    // master's frame is the straight segment from a to b; with one it is
+    // followed in steps (a chord between its ends would cut into a circle
+    // that only spins about its centre under a node in contact).
+    const auto [u_old, theta_old] = motion(t_old);
+    const auto [u_new, theta_new] = motion(t_new);
+    double closest                = std::min(a.norm(), b.norm());
+    if (theta_old == theta_new)
+      {
+        const Tensor<1, dim> ab = b - a;
+        const double         s  = ab.norm_square() > 0. ?
+                                    std::clamp(-(a * ab) / ab.norm_square(), 0., 1.) :
+                                    0.;
+        closest                 = (a + s * ab).norm();
+      }
+    else
+      {
+        // Steps of at most a sixteenth of the radius along the path (and
+        // at least 64), so that a passage deeper than a slave facet is not
+        // stepped over.
+        const double length =
+          (b - a).norm() + (x_new - x_old).norm() +
+          std::abs(theta_new - theta_old) * (a.norm() + b.norm());
+        const unsigned int n = static_cast<unsigned int>(
+          std::clamp(std::ceil(16. * length / radius), 64., 65536.));
+        const auto distance = [&](const double s) {
+          return relative(x_old + s * (x_new - x_old),
+                          t_old + s * (t_new - t_old))
+            .norm();
+        };
+        unsigned int best = 0;
+        for (unsigned int k = 1; k < n; ++k)
+          if (const double d = distance(static_cast<double>(k) / n);
+              d < closest)
+            {
+              closest = d;
+              best    = k;
+            }
+        // The minimum between the neighbours of the closest step.
+        if (best > 0)
+          {
+            double lo = (best - 1.) / n, hi = (best + 1.) / n;
+            for (unsigned int i = 0; i < 60; ++i)
+              {
+                const double m1 = lo + (hi - lo) / 3., m2 = hi - (hi - lo) / 3.;
+                if (distance(m1) < distance(m2))
+                  hi = m2;
+                else
+                  lo = m1;
+              }
+            closest = std::min(closest, distance(0.5 * (lo + hi)));
+          }
+      }
     // Relative to the start's depth: a closed node that the master leaves
     // (or a penalty node that started deep inside) has gone no deeper.
-    return std::max(0.,
-                    radius - (a + s * ab).norm() -
-                      std::max(0., radius - a.norm()));
+    return std::max(0., radius - closest - std::max(0., radius - a.norm()));
   }
 
   template class RigidMaster<2>;

@@ -25,7 +25,7 @@ namespace glide
     /// a terminal's (SIGINT, SIGQUIT, SIGHUP), kill's default (SIGTERM),
     /// and those a batch system sends before it ends a job or that a
     /// limit raises: SIGUSR1 and SIGUSR2 (SLURM's --signal, PBS), SIGXCPU
-    /// (a CPU time limit, ulimit -t), SIGALRM. Their default action ended
+    /// (a soft CPU time limit, ulimit -St), SIGALRM. Their default action ended
     /// glide in the middle of a file.
     constexpr std::pair<int, const char *> stops[] = {{SIGTERM, "SIGTERM"},
                                                       {SIGINT, "SIGINT"},

@@ -223,6 +223,7 @@ namespace glide
           {
             // One process: a stream whose state tells whether the disk
             // took every byte.
+            errno = 0;
             std::ofstream out(tmp, std::ios::binary);
             data_out.write_vtu(out);
             out.close();
@@ -231,13 +232,19 @@ namespace glide
                         "': " + advice(errno ? errno : EIO) + ".";
           }
         else
-          data_out.write_vtu_in_parallel(tmp, comm);
+          {
+            // MPI-IO does not set errno.
+            errno = 0;
+            data_out.write_vtu_in_parallel(tmp, comm);
+          }
       }
     catch (const std::exception &)
       {
-        // deal.II checks the stream itself (ExcIO): errno still tells why.
-        const int error = errno;
-        failure         = "Cannot write '" + output.path() + "/" + file +
+        // deal.II checks the stream itself (ExcIO): errno still tells why
+        // (one process).
+        const int error =
+          Utilities::MPI::n_mpi_processes(comm) == 1 ? errno : 0;
+        failure = "Cannot write '" + output.path() + "/" + file +
                   "': " + (error != 0 ? advice(error) : "(is the disk full?)") +
                   ".";
       }

@@ -913,14 +913,15 @@ namespace glide
           {
             // A mesh file's nodes too (until 2026-12-06 accepted: the part
             // at r < 0 counted with negative weight in every integral).
-            // Round-off below 1e-8 of the mesh's extent is the axis.
+            // Round-off below 1e-6 of the mesh's extent is the axis (a
+            // file written in single precision).
             const auto  &vertices = b.mesh.imported->vertices;
             double       extent = 0., lowest = 0.;
             unsigned int n = 0, deepest = 0;
             for (const auto &v : vertices)
               extent = std::max({extent, std::abs(v[0]), std::abs(v[1])});
             for (unsigned int k = 0; k < vertices.size(); ++k)
-              if (vertices[k][0] < -1e-8 * extent)
+              if (vertices[k][0] < -1e-6 * extent)
                 {
                   ++n;
                   if (vertices[k][0] < lowest)

@@ -96,8 +96,8 @@ namespace glide
                       Patterns::Double(0., 0.5),
                       "Relative residual reduction of the Krylov solver "
                       "(at most 0.5: at 1 the solver returns no correction "
-                      "and Newton's iterates become NaN); KINSOL may ask for "
-                      "a looser one.");
+                      "and Newton's iterates become NaN); KINSOL's inexact "
+                      "Newton may ask for a tighter one.");
     prm.declare_entry("Maximum iterations",
                       "2000",
                       Patterns::Integer(1),

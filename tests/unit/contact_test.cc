@@ -138,21 +138,37 @@ TEST(RigidMaster, PassageDepth)
   EXPECT_EQ(
     circle.passage_depth(Point<2>(1., 1.6), 0., Point<2>(1., -2.), 1., 1e-9),
     0.);
-  // A quarter turn about the centre and a translation (0.2, 0): the point
-  // fixed at (1, 2.55) is at (0, 0.55) from the centre in the master's
-  // frame at t = 0 and at R(-pi/2) ((-0.2, 0.55)) = (0.55, 0.2) at t = 1;
-  // the chord between them passes 0.3025 / sqrt(0.425) from the centre.
-  // (Without the turn the path stays 0.55 away; with the turn's sign
-  // reversed it passes 0.325 away.)
+  // A half turn about (1, 1), 1 below the centre (1, 2): the centre
+  // moves along a half circle through (0, 1) (at t = 0.5, turning
+  // counterclockwise) to (1, 0). The point fixed at (0, 1), outside at
+  // both ends (sqrt(2) from the centre), is passed by the whole radius;
+  // with the turn reversed the centre runs through (2, 1) and never comes
+  // nearer than sqrt(2).
   auto q            = rigid(MasterType::rigid_circle);
-  q.translation     = "0.2*t; 0";
-  q.rotation        = "pi/2*t";
-  q.rotation_center = {1., 2., 0.};
+  q.rotation        = "pi*t";
+  q.rotation_center = {1., 1., 0.};
   RigidMaster<2> turning(q, "pair");
   EXPECT_NEAR(
-    turning.passage_depth(Point<2>(1., 2.55), 0., Point<2>(1., 2.55), 1., 0.),
-    0.5 - 0.3025 / std::sqrt(0.425),
+    turning.passage_depth(Point<2>(0., 1.), 0., Point<2>(0., 1.), 1., 0.),
+    0.5,
     1e-12);
+  q.rotation = "-pi*t";
+  RigidMaster<2> reversed(q, "pair");
+  EXPECT_EQ(
+    reversed.passage_depth(Point<2>(0., 1.), 0., Point<2>(0., 1.), 1., 0.), 0.);
+  // A circle that spins about its own centre by a quarter turn and moves
+  // by (0.2, 0) under a point on its surface: the point stays on or
+  // outside it (0.55 and 0.585 from the centre at the ends), so there is
+  // no passage (a chord between the ends in the circle's frame passed
+  // 0.3025 / sqrt(0.425) = 0.464 from the centre).
+  auto r            = rigid(MasterType::rigid_circle);
+  r.translation     = "0.2*t; 0";
+  r.rotation        = "pi/2*t";
+  r.rotation_center = {1., 2., 0.};
+  RigidMaster<2> spinning(r, "pair");
+  EXPECT_EQ(
+    spinning.passage_depth(Point<2>(1., 2.55), 0., Point<2>(1., 2.55), 1., 0.),
+    0.);
   p.rotation    = "0";
   p.translation = "0; -3*t; 0";
   RigidMaster<3> cylinder(p, "pair");

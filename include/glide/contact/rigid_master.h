@@ -76,7 +76,9 @@ namespace glide
      * the master's own frame), goes into a circle, cylinder or sphere
      * that the point is outside of at its end, beyond the depth it started
      * at: the radius less the path's closest distance to the centre (the
-     * axis), less the start's depth if it started inside (in contact, or
+     * axis; the point moving straight while the master moves by its
+     * motion, followed in steps where it turns), less the start's depth if
+     * it started inside (in contact, or
      * penetrating under penalty). 0 where the path stays outside, where the
      * point ends not more than @p clearance outside (in contact), for a
      * plane and for a slave inside (a hole: a point outside at its end has
