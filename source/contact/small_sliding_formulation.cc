@@ -350,8 +350,8 @@ namespace glide
         // Relative to the anchor's material point; slip is the change of
         // the slave point's coordinates along the plane's tangents, which
         // turn with the master: a rigid rotation of both bodies does not
-        // slip. R12.2: warn once per closed node that moved along its
-        // plane further than its limit from the anchor.
+        // slip. R12.2: warn once per node in or near contact that moved
+        // along its plane further than its limit from the anchor.
         if (!anchors[i].found)
           continue;
         std::array<double, 2> offset{{0., 0.}};
@@ -374,10 +374,13 @@ namespace glide
             this->slip_length[i] += std::sqrt(increment);
           }
         previous_offset[i] = offset;
-        // Closed nodes only: an open node far from the contact zone moves
-        // along its anchor's plane as the master moves past it, and loads
-        // nothing.
-        if (closed[i] && slide > anchors[i].limit && !warned[i])
+        // Closed nodes, and open ones within their facet size of the
+        // plane (on a concave master, a hole, a node that slid reads as
+        // open where it penetrates): an open node far from the contact
+        // zone moves along its anchor's plane as the master moves past it,
+        // and loads nothing.
+        if ((closed[i] || s[i].gap < nodes[i].size) &&
+            slide > anchors[i].limit && !warned[i])
           {
             warned[i] = true;
             std::ostringstream x;
