@@ -90,11 +90,20 @@ namespace glide
                                           BoundaryConditionType::zsymm);
     const auto c = Utilities::split_string_list(prm.get("Components"));
     components   = {false, false, false};
+    const std::string path = "Boundary condition " + name;
     for (const auto &s : c)
-      components[s == "x" ? 0 : s == "y" ? 1 : 2] = true;
+      {
+        const unsigned int k = s == "x" ? 0 : s == "y" ? 1 : 2;
+        // A component named twice is most likely a typo for another one
+        // (until 2026-12-06 'x, x, y' was taken as 'x, y').
+        require(!components[k],
+                "Parameter '" + path + "/Components' = '" +
+                  prm.get("Components") + "' names '" + s +
+                  "' twice; name each component once (x, y or z).");
+        components[k] = true;
+      }
     function = prm.get("Function");
 
-    const std::string path    = "Boundary condition " + name;
     const bool needs_function = type == BoundaryConditionType::displacement ||
                                 type == BoundaryConditionType::traction ||
                                 type == BoundaryConditionType::pressure ||

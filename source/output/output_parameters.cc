@@ -1,4 +1,8 @@
 #include <glide/output/output_parameters.h>
+#include <glide/scene/input_error.h>
+
+#include <cstdlib>
+#include <string>
 
 namespace glide
 {
@@ -13,7 +17,9 @@ namespace glide
                       Patterns::DirectoryName(),
                       "Results go to <Directory>/<Scene name>/: "
                       "<name>-NNNN.vtu per output step, <name>.pvd, "
-                      "statistics.csv. Relative to the current directory. "
+                      "statistics.csv. Relative to the current directory; "
+                      "a leading '~' is the home directory ($HOME), as in a "
+                      "shell. "
                       "glide lists the files it writes there in "
                       ".glide-output and never deletes or overwrites any "
                       "other file.");
@@ -34,6 +40,17 @@ namespace glide
   {
     prm.enter_subsection("Output");
     directory = prm.get("Directory");
+    // '~' as a shell expands it: until 2026-12-06 '~/results' made a
+    // directory named '~' in the current directory.
+    if (directory == "~" || directory.rfind("~/", 0) == 0)
+      {
+        const char *home = std::getenv("HOME");
+        require(home != nullptr && *home != '\0',
+                "Parameter 'Output/Directory' = '" + directory +
+                  "' starts with '~', but HOME is not set; give the path "
+                  "without '~'.");
+        directory = std::string(home) + directory.substr(1);
+      }
     write_vtu = prm.get_bool("Write VTU");
     every     = prm.get_integer("Every n steps");
     prm.leave_subsection();

@@ -1902,6 +1902,24 @@ def case_conditions_sharing_a_corner():
     check("prescribe different values" not in log, "conditions that agree at the corner: no warning")
 
 
+def case_output_directory_in_home():
+    """P5.1: 'Output/Directory = ~/results' is taken as a shell takes it,
+    under $HOME (until 2026-12-06 glide made a directory named '~' in the
+    current directory). With HOME set to a temporary directory the results
+    appear under it, and no '~' appears in the current directory."""
+    home = tempfile.mkdtemp(prefix="glide-home-")
+    work = tempfile.mkdtemp(prefix="glide-cwd-")
+    env = dict(os.environ, HOME=home)
+    p = subprocess.run([ARGS.glide, scene("block.prm"), "--set", "Output/Directory=~/results",
+                        "--set", "Output/Write VTU=false"], cwd=work, env=env, capture_output=True, text=True)
+    check(p.returncode == 0, f"runs (exit {p.returncode}): {p.stderr[-300:]}")
+    check(os.path.isfile(os.path.join(home, "results", "block", "statistics.csv")),
+          "the statistics are under $HOME/results/block")
+    check(not os.path.exists(os.path.join(work, "~")), "no directory named '~' in the current directory")
+    shutil.rmtree(home, ignore_errors=True)
+    shutil.rmtree(work, ignore_errors=True)
+
+
 def case_excessive_sliding():
     """Issue 4, R11.3, R12.2: parameters/excessive-sliding.prm. A block is
     pressed onto a foundation of two bodies (left, right; master: both
