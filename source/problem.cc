@@ -238,6 +238,8 @@ namespace glide
     pcout << std::endl;
     for (const auto &note : mesh_notes(scene))
       pcout << "  warning: " << note << std::endl;
+    for (const auto &note : elasticity.get_mesh().notes())
+      pcout << "  warning: " << note << std::endl;
     for (const auto &note : elasticity.condition_warnings())
       pcout << "  warning: " << note << std::endl;
   }

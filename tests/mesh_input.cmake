@@ -81,7 +81,7 @@ glide_error_test(mesh.surface_of_other_body "Contact pair interface/Master' = 'l
 # vertex, (0, 5); a point that is not a point is named as written.
 glide_error_test(node_set_point_misses "Node set 'left': no mesh vertex within 1e-08 of its point 2 of 2 \\(0, 6\\); the nearest vertex is 1 away"
   ${SCENES}/mesh-import/node-set-point-misses.prm)
-glide_error_test(node_set_point_syntax "Node set left/Points': cannot read '0, 5, x' as a point"
+glide_error_test(node_set_point_syntax "Node set left/Points' = '0, 5, x': cannot read 'x' as a number"
   ${SCENES}/mesh-import/node-set-point-syntax.prm)
 
 # Positive tests: a two-body contact problem from one Abaqus file against

@@ -18,8 +18,7 @@ namespace glide
                const unsigned int dim,
                const std::string &path)
     {
-      auto v = Utilities::string_to_double(
-        Utilities::split_string_list(prm.get(entry)));
+      auto v = read_numbers(prm.get(entry), path + "/" + entry);
       if (dim == 3 && v.size() == 2 && prm.get(entry) == "0, 0")
         v.push_back(0.);
       if (dim == 3 && v.size() == 2 && prm.get(entry) == "0, 1")
@@ -193,17 +192,10 @@ namespace glide
                   prm.get("Master normals") + "': the entry '" + entry +
                   "' is not of the form '<node set>: nx, ny" +
                   (dim == 3 ? ", nz" : "") + "'.");
-        const std::string   set = Utilities::trim(entry.substr(0, colon));
-        std::vector<double> n;
-        try
-          {
-            n = Utilities::string_to_double(
-              Utilities::split_string_list(entry.substr(colon + 1)));
-          }
-        catch (...)
-          {
-            n.clear();
-          }
+        const std::string         set = Utilities::trim(entry.substr(0, colon));
+        const std::vector<double> n =
+          read_numbers(Utilities::trim(entry.substr(colon + 1)),
+                       path + "/Master normals");
         double length = 0.;
         for (const double x : n)
           length += x * x;

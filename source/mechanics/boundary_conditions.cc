@@ -153,16 +153,7 @@ namespace glide
     const std::string path = "Node set " + name + "/Points";
     for (const auto &p : Utilities::split_string_list(prm.get("Points"), ';'))
       {
-        std::vector<double> x;
-        try
-          {
-            x = Utilities::string_to_double(Utilities::split_string_list(p));
-          }
-        catch (...)
-          {
-            throw InputError("Parameter '" + path + "': cannot read '" + p +
-                             "' as a point.");
-          }
+        const std::vector<double> x = read_numbers(p, path);
         require(x.size() == dim,
                 "Parameter '" + path + "': the point '" + p + "' needs " +
                   std::to_string(dim) + " coordinates.");

@@ -609,48 +609,97 @@ namespace glide
         check_refinement_fits("Global refinements");
         tria.execute_coarsening_and_refinement();
       }
+    // Local refinement: towards a point per body, by a radius that halves
+    // with each level down to 'Minimum refinement radius'.
+    const auto refinement_point = [&](const MeshParameters &m) {
+      Point<dim> point;
+      if (!m.refinement_point.empty())
+        point = to_point<dim>(m.refinement_point);
+      else if (m.type == "hertz")
+        {
+          point = to_point<dim>(m.center);
+          point[1] -= m.radius;
+        }
+      else if (m.type == "block")
+        for (unsigned int d = 0; d < dim; ++d)
+          point[d] = 0.5 * (m.lower_corner[d] + m.upper_corner[d]);
+      else
+        point = to_point<dim>(m.center);
+      return point;
+    };
+    const auto refinement_radius = [&](const MeshParameters &m,
+                                       const unsigned int    level) {
+      const double r0 =
+        m.refinement_radius > 0 ? m.refinement_radius : 0.25 * size;
+      return std::max(r0 / std::pow(2., level), m.minimum_refinement_radius);
+    };
+    // The levels that refined a cell, per body: a level that refines none
+    // (the point off the body, or beyond the radius of every cell) ends
+    // the body's refinement, as every later level is narrower.
+    const unsigned int        n_bodies = scene.bodies.size();
+    std::vector<unsigned int> levels_done(n_bodies, 0);
     for (unsigned int level = 0;; ++level)
       {
-        bool any = false;
+        std::vector<double> flagged(n_bodies, 0.);
         for (const auto &cell : tria.active_cell_iterators())
           if (cell->is_locally_owned())
             {
-              const auto &body = scene.bodies[cell->material_id()];
-              const auto &m    = body.mesh;
-              if (level >= m.local_refinements)
+              const auto &m = scene.bodies[cell->material_id()].mesh;
+              if (level >= m.local_refinements ||
+                  levels_done[cell->material_id()] < level)
                 continue;
-              Point<dim> point;
-              if (!m.refinement_point.empty())
-                point = to_point<dim>(m.refinement_point);
-              else if (m.type == "hertz")
-                {
-                  point = to_point<dim>(m.center);
-                  point[1] -= m.radius;
-                }
-              else
-                point =
-                  to_point<dim>(m.type == "block" ? m.lower_corner : m.center);
-              if (m.refinement_point.empty() && m.type == "block")
-                for (unsigned int d = 0; d < dim; ++d)
-                  point[d] = 0.5 * (m.lower_corner[d] + m.upper_corner[d]);
-              const double r0 =
-                m.refinement_radius > 0 ? m.refinement_radius : 0.25 * size;
-              const double r =
-                std::max(r0 / std::pow(2., level), m.minimum_refinement_radius);
-              Point<dim> nearest = point;
+              Point<dim> nearest = refinement_point(m);
               if (dim == 3 && m.type == "half cylinder")
                 nearest[2] =
                   cell->center()[2]; // refine along the line of contact
-              if (cell->center().distance(nearest) < r + 0.5 * cell->diameter())
+              if (cell->center().distance(nearest) <
+                  refinement_radius(m, level) + 0.5 * cell->diameter())
                 {
                   cell->set_refine_flag();
-                  any = true;
+                  flagged[cell->material_id()] = 1.;
                 }
             }
-        if (Utilities::MPI::max(any ? 1 : 0, tria.get_communicator()) == 0)
+        std::vector<double> flagged_anywhere(n_bodies);
+        Utilities::MPI::max(flagged, tria.get_communicator(), flagged_anywhere);
+        bool any = false;
+        for (unsigned int b = 0; b < n_bodies; ++b)
+          if (flagged_anywhere[b] > 0.)
+            {
+              ++levels_done[b];
+              any = true;
+            }
+        if (!any)
           break;
         check_refinement_fits("Local refinements");
         tria.execute_coarsening_and_refinement();
+      }
+    refinement_notes.clear();
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      {
+        const auto &m = scene.bodies[b].mesh;
+        if (levels_done[b] >= m.local_refinements)
+          continue;
+        std::ostringstream text;
+        text << "body '" << scene.bodies[b].name
+             << "': 'Refinement/Local refinements' = " << m.local_refinements
+             << ", but "
+             << (levels_done[b] == 0 ?
+                   std::string("no level") :
+                   "only the first " + std::to_string(levels_done[b]) +
+                     " level(s)")
+             << " refined a cell: at level " << levels_done[b] + 1
+             << " no cell centre of the body lies within "
+             << refinement_radius(m, levels_done[b])
+             << " (the level's radius) plus half the cell's diameter of "
+             << (m.refinement_point.empty() ? "the default refinement point" :
+                                              "'Refinement point'")
+             << " (";
+        for (unsigned int d = 0; d < dim; ++d)
+          text << (d ? ", " : "") << refinement_point(m)[d];
+        text << "). Put 'Refinement point' on the body where the mesh must "
+                "be fine, or widen 'Refinement radius' or 'Minimum "
+                "refinement radius'.";
+        refinement_notes.push_back(text.str());
       }
   }
 

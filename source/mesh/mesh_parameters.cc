@@ -28,10 +28,10 @@ namespace glide
     get_point(ParameterHandler  &prm,
               const std::string &entry,
               const unsigned int dim,
-              const double       fill)
+              const double       fill,
+              const std::string &path)
     {
-      auto v = Utilities::string_to_double(
-        Utilities::split_string_list(prm.get(entry)));
+      auto v = read_numbers(prm.get(entry), path + "/" + entry);
       if (dim == 3 && v.size() == 2 && prm.get(entry) == default_of.at(entry))
         v.push_back(fill);
       return v;
@@ -240,8 +240,8 @@ namespace glide
       }
 
     prm.enter_subsection("Block");
-    lower_corner = get_point(prm, "Lower corner", dim, 0.);
-    upper_corner = get_point(prm, "Upper corner", dim, 1.);
+    lower_corner = get_point(prm, "Lower corner", dim, 0., path + "/Block");
+    upper_corner = get_point(prm, "Upper corner", dim, 1., path + "/Block");
     subdivisions.clear();
     for (const auto &s : Utilities::split_string_list(prm.get("Subdivisions")))
       subdivisions.push_back(Utilities::string_to_int(s));
@@ -251,16 +251,17 @@ namespace glide
     prm.leave_subsection();
 
     prm.enter_subsection("Round shapes");
-    center       = get_point(prm, "Center", dim, 0.);
+    center       = get_point(prm, "Center", dim, 0., path + "/Round shapes");
     radius       = prm.get_double("Radius");
     inner_radius = prm.get_double("Inner radius");
     length       = prm.get_double("Length");
     prm.leave_subsection();
 
     prm.enter_subsection("Refinement");
-    global_refinements        = prm.get_integer("Global refinements");
-    local_refinements         = prm.get_integer("Local refinements");
-    refinement_point          = get_point(prm, "Refinement point", dim, 0.);
+    global_refinements = prm.get_integer("Global refinements");
+    local_refinements  = prm.get_integer("Local refinements");
+    refinement_point =
+      get_point(prm, "Refinement point", dim, 0., path + "/Refinement");
     refinement_radius         = prm.get_double("Refinement radius");
     minimum_refinement_radius = prm.get_double("Minimum refinement radius");
     prm.leave_subsection();

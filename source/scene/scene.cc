@@ -669,15 +669,15 @@ namespace glide
         body.rigid_center.assign(dimension, 0.);
         if (!prm.get("Rotation center").empty())
           {
-            const auto c =
-              Utilities::split_string_list(prm.get("Rotation center"), ',');
+            const auto c = read_numbers(prm.get("Rotation center"),
+                                        path + "/Rigid body/Rotation center");
             require(c.size() == dimension,
                     "Parameter '" + path +
                       "/Rigid body/Rotation center' needs " +
                       std::to_string(dimension) +
                       " comma-separated coordinates.");
             for (unsigned int d = 0; d < dimension; ++d)
-              body.rigid_center[d] = Utilities::string_to_double(c[d]);
+              body.rigid_center[d] = c[d];
           }
         prm.leave_subsection();
         prm.leave_subsection();

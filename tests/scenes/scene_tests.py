@@ -1902,6 +1902,36 @@ def case_conditions_sharing_a_corner():
     check("prescribe different values" not in log, "conditions that agree at the corner: no warning")
 
 
+def case_refinement_point_off_the_body():
+    """P1.3: 'Local refinements' that refine nothing are named (until
+    2026-12-06 a 'Refinement point' off the body, or a radius smaller than
+    its distance to every cell, left the mesh coarse in silence).
+    tests/scenes/block.prm ([0,2]x[0,1], 4x2 cells of 0.5): towards the
+    corner (2, 1), radius 0.2, all three levels refine the corner cell
+    (8 + 3*3 = 17 cells) and nothing is said; towards (2.3, 1) with radius
+    0.2 no level refines (8 cells: the corner cell's centre is 0.60 away,
+    more than 0.2 + half its diameter 0.28); with radius 0.5 the first
+    level refines and the second does not (11 cells)."""
+    cases = [("2, 1", "0.2", 17, None),
+             ("2.3, 1", "0.2", 8, "but no level refined a cell: at level 1 no cell centre of the body lies "
+              "within 0.2 (the level's radius) plus half the cell's diameter of 'Refinement point' (2.3, 1)"),
+             ("2.3, 1", "0.5", 11, "but only the first 1 level(s) refined a cell: at level 2 no cell centre "
+              "of the body lies within 0.25")]
+    for point, radius, cells, said in cases:
+        rows, log, _ = run(scene("block.prm"), "Body block/Refinement/Local refinements=3",
+                           f"Body block/Refinement/Refinement point={point}",
+                           f"Body block/Refinement/Refinement radius={radius}", "Output/Write VTU=false",
+                           name="refined")
+        m = re.search(r"bodies: +1, (\d+) cells", log)
+        check(m and int(m.group(1)) == cells, f"point {point}, radius {radius}: {cells} cells: {m and m.group(0)}")
+        warned = [line for line in log.splitlines() if "'Refinement/Local refinements' = 3" in line]
+        if said is None:
+            check(not warned, f"point {point}: every level refines, no warning: {warned}")
+        else:
+            check(len(warned) == 1 and "warning: body 'block'" in warned[0] and said in warned[0],
+                  f"point {point}, radius {radius}: one warning: {warned}")
+
+
 def case_output_directory_in_home():
     """P5.1: 'Output/Directory = ~/results' is taken as a shell takes it,
     under $HOME (until 2026-12-06 glide made a directory named '~' in the

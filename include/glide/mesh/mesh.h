@@ -61,9 +61,19 @@ namespace glide
       return size;
     }
 
+    /// Warnings about the mesh as built: a body whose 'Local refinements'
+    /// found no cell to refine at some level (its 'Refinement point' off the
+    /// body, or beyond 'Refinement radius' of every cell).
+    const std::vector<std::string> &
+    notes() const
+    {
+      return refinement_notes;
+    }
+
   private:
     std::map<std::string, std::set<dealii::types::boundary_id>> surface_ids;
-    double                                                      size = 1.;
+    std::vector<std::string> refinement_notes;
+    double                   size = 1.;
     /// Node sets of mesh files (<body>.<set>), for the list of surfaces.
     std::vector<std::string> file_node_sets;
     /// Node sets of mesh files that are not node sets of a body, with the

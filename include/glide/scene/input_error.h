@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace glide
 {
@@ -29,4 +30,16 @@ namespace glide
     if (!condition)
       throw InputError(message);
   }
+
+  /**
+   * The numbers of a list-valued parameter, e.g. a point '0, 1.5': the
+   * @p text split at @p separator, each piece read as a finite double. A
+   * piece that is not a number, or lies beyond double precision (1e-320,
+   * 1e400), is an InputError naming the parameter @p path. An empty @p text
+   * gives an empty list.
+   */
+  std::vector<double>
+  read_numbers(const std::string &text,
+               const std::string &path,
+               const char         separator = ',');
 } // namespace glide
