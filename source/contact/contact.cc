@@ -59,6 +59,95 @@ namespace glide
   template std::array<Tensor<1, 3>, 2>
   contact_tangents<3>(const Tensor<1, 3> &);
 
+  namespace
+  {
+    /**
+     * Sum the slave nodes' partial quantities (from this process's own
+     * cells, hanging nodes condensed) at the processes that own the nodes:
+     * each process sends what it holds of a node it does not own to the
+     * node's owner. The owners then hold the whole tributary area,
+     * normal, surface mass, facet sizes and merged hanging nodes; the
+     * other entries stay partial (only owned nodes are constraint points).
+     */
+    template <int dim>
+    void
+    sum_at_owners(std::map<types::global_dof_index, SlaveNode<dim>> &found,
+                  std::map<types::global_dof_index, unsigned int>   &n_facets,
+                  const IndexSet                                    &owned,
+                  MPI_Comm                                           comm)
+    {
+      IndexSet others(owned.size());
+      for (const auto &[key, node] : found)
+        if (!owned.is_element(key) &&
+            (n_facets[key] > 0 || node.measure != 0. || !node.hanging.empty()))
+          others.add_index(key);
+      others.compress();
+      const std::vector<unsigned int> owner =
+        Utilities::MPI::compute_index_owner(owned, others, comm);
+      std::map<unsigned int, std::vector<double>> send;
+      unsigned int                                n = 0;
+      for (const auto key : others)
+        {
+          const auto &node = found.at(key);
+          auto       &data = send[owner[n++]];
+          data.push_back(static_cast<double>(key));
+          for (unsigned int d = 0; d < dim; ++d)
+            data.push_back(static_cast<double>(node.dofs[d]));
+          for (unsigned int d = 0; d < dim; ++d)
+            data.push_back(node.X[d]);
+          for (unsigned int d = 0; d < dim; ++d)
+            data.push_back(node.normal[d]);
+          data.push_back(node.area);
+          data.push_back(node.measure);
+          data.push_back(node.size);
+          data.push_back(n_facets[key]);
+          data.push_back(node.mass.size());
+          for (const auto &[b, m] : node.mass)
+            {
+              data.push_back(static_cast<double>(b));
+              data.push_back(m);
+            }
+          data.push_back(node.hanging.size());
+          for (const auto &[h, w] : node.hanging)
+            {
+              data.push_back(static_cast<double>(h));
+              data.push_back(w);
+            }
+        }
+      const auto index = [](const double x) {
+        return static_cast<types::global_dof_index>(x);
+      };
+      for (const auto &[rank, data] : Utilities::MPI::some_to_some(comm, send))
+        for (std::size_t i = 0; i < data.size();)
+          {
+            const auto key  = index(data[i++]);
+            auto      &node = found[key];
+            for (unsigned int d = 0; d < dim; ++d)
+              node.dofs[d] = index(data[i++]);
+            for (unsigned int d = 0; d < dim; ++d)
+              node.X[d] = data[i++];
+            for (unsigned int d = 0; d < dim; ++d)
+              node.normal[d] += data[i++];
+            node.area += data[i++];
+            node.measure += data[i++];
+            node.size += data[i++];
+            n_facets[key] += static_cast<unsigned int>(data[i++]);
+            const auto n_mass = static_cast<std::size_t>(data[i++]);
+            for (std::size_t j = 0; j < n_mass; ++j, i += 2)
+              node.mass[index(data[i])] += data[i + 1];
+            const auto n_hanging = static_cast<std::size_t>(data[i++]);
+            for (std::size_t j = 0; j < n_hanging; ++j, i += 2)
+              {
+                const auto h = index(data[i]);
+                if (std::none_of(node.hanging.begin(),
+                                 node.hanging.end(),
+                                 [&](const auto &e) { return e.first == h; }))
+                  node.hanging.emplace_back(h, data[i + 1]);
+              }
+          }
+    }
+  } // namespace
+
   template <int dim>
   Contact<dim>::Contact(const Scene           &scene,
                         const Elasticity<dim> &elasticity,
@@ -253,9 +342,15 @@ namespace glide
 
         // Slave nodes: every node of a slave face, keyed by its x DoF, with
         // the tributary area int N_a dA (times 2 pi r in axisymmetric
-        // analysis) and the mean size of the adjacent slave facets. Ghost
-        // cells contribute too, so that nodes on a process boundary get
-        // their whole area.
+        // analysis) and the mean size of the adjacent slave facets. Each
+        // process integrates over its own cells and the sums are gathered
+        // at the nodes' owners (sum_at_owners()). Ghost cells only name
+        // their nodes, for the hanging-node condensation: adding their
+        // faces instead gave whole areas to nodes on a process boundary,
+        // but not to a slave node whose hanging neighbour (a locally
+        // refined 3D slave) has faces beyond the ghost layer: its CPRESS,
+        // and with penalty its stiffness and the answer, depended on the
+        // number of processes (4 % on a 3D patch test with 2).
         for (const auto &cell : dof_handler.active_cell_iterators())
           {
             if (cell->is_artificial())
@@ -281,6 +376,8 @@ namespace glide
                     node.X =
                       mapping.transform_unit_to_real_cell(cell,
                                                           unit_points[k[0]]);
+                    if (!cell->is_locally_owned())
+                      continue;
                     for (unsigned int q = 0; q < quadrature.size(); ++q)
                       {
                         const double dA =
@@ -317,7 +414,11 @@ namespace glide
       }
     slave_modulus = Utilities::MPI::min(slave_modulus, comm);
     if (!node_based)
-      condense_hanging_nodes(found, n_facets);
+      {
+        condense_hanging_nodes(found, n_facets);
+        if (Utilities::MPI::n_mpi_processes(comm) > 1)
+          sum_at_owners(found, n_facets, owned, comm);
+      }
     // A node without tributary area (the corner node on the axis of a
     // quadratic axisymmetric facet: int N r dr = 0 on a straight facet, a
     // few 1e-3 of int |N| r dr on a curved one) carries no share of any

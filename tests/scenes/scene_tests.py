@@ -3427,6 +3427,45 @@ def case_mortar_patch_test_3d():
           "penalty: contact force = support reaction")
 
 
+def case_mpi_refined_slave_3d():
+    """P7.1, R14.5: a locally refined 3D slave surface gives the same
+    answer on 1 and 2 processes. tests/scenes/patch-test-3d.prm with the
+    upper (slave) block refined once near (0.3, 0.5, 0.3) or (0.6, 0.5,
+    0.6): hanging nodes on the interface, whose tributary areas go to
+    their parents. Until 2026-12-06 a process took a node's area from its
+    own and its ghost cells, and a hanging neighbour's faces beyond the
+    ghost layer were lost: with 2 processes mortar's CPRESS was 10434.78
+    (300 / 0.02875) instead of 1e4 at (0.8, 0.5, 0.4), and with penalty
+    node to surface the stiffness and so the answer changed (3 % at a
+    node). Now each process integrates its own cells and the sums meet at
+    the nodes' owners. Checked on 2 processes: hard mortar's pressure
+    uniform to 1e-10 of 1e4 (the patch test); penalty node to surface:
+    every node's CPRESS and force equal to the serial run's to 1e-8."""
+    for point in ("0.3, 0.5, 0.3", "0.6, 0.5, 0.6"):
+        refined = ["Output/Write VTU=false", "Body upper/Refinement/Local refinements=1",
+                   f"Body upper/Refinement/Refinement point={point}",
+                   "Body upper/Refinement/Refinement radius=0.35"]
+        _, _, out = run(scene("patch-test-3d.prm"), *refined, name="mortar", mpi=True)
+        p = [n["CPRESS"] for n in contact_nodes(out, "interface")]
+        spread = max(abs(x / 1e4 - 1) for x in p)
+        check(len(p) > 0 and spread <= 1e-10,
+              f"refined near ({point}), 2 processes, mortar: pressure 1e4 at {len(p)} nodes "
+              f"(largest relative deviation {spread:.2e})")
+        penalty = refined + ["Contact pair interface/Formulation=node to surface",
+                             "Contact pair interface/Enforcement=penalty",
+                             "Contact pair interface/Penalty stiffness=1e7"]
+        _, _, serial = run(scene("patch-test-3d.prm"), *penalty, name="penalty")
+        _, _, parallel = run(scene("patch-test-3d.prm"), *penalty, name="penalty", mpi=True)
+        key = lambda n: (round(n["X"], 9), round(n["Y"], 9), round(n["Z"], 9))
+        a = {key(n): n for n in contact_nodes(serial, "interface")}
+        b = {key(n): n for n in contact_nodes(parallel, "interface")}
+        check(a.keys() == b.keys() and len(a) > 0, f"refined near ({point}), penalty: the same {len(a)} slave nodes")
+        worst = max(max(abs(a[k][f] - b[k][f]) / max(abs(a[k][f]), 1e-30) for f in ("CPRESS", "force"))
+                    for k in a if a[k]["CPRESS"] != 0 or b[k]["CPRESS"] != 0)
+        check(worst <= 1e-8, f"refined near ({point}), penalty node to surface: CPRESS and force on 2 processes "
+              f"= serial (largest relative difference {worst:.2e})")
+
+
 def case_mortar_hertz_3d():
     """Issue 14 (R14.2): parameters/hertz-3d-elastic.prm (quarter model,
     sphere R = 1 pressed 0.02 into a block, E = 1, nu = 0.3, symmetry
