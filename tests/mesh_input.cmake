@@ -123,4 +123,6 @@ glide_error_test(mesh.axisymmetric_negative_radius "Body 'part': in an axisymmet
 # refused (until 2026-12-06 *ELEMENT, *NSET, *ELSET and *SURFACE read them
 # as empty, in silence: one element of two).
 glide_mesh_error_test(abaqus_element_input bad_element_input.inp "12: \\*ELEMENT, INPUT=... is not read by glide; put the data lines into the file, or \\*INCLUDE")
+glide_mesh_error_test(abaqus_include_directory bad_include_directory.inp "9: the file included by \\*INCLUDE, '/' is a directory%3B give the path of an Abaqus .inp file")
+glide_mesh_error_test(abaqus_include_device bad_include_device.inp "9: the file included by \\*INCLUDE, '/dev/zero' is not a regular file")
 glide_mesh_error_test(abaqus_nset_input bad_nset_input.inp "13: \\*NSET, INPUT=... is not read by glide")

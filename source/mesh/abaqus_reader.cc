@@ -110,6 +110,10 @@ namespace glide
                         ": cannot open the included "
                         "file '" +
                         name + "'.");
+              require_regular_file(name,
+                                   file_line(file, number) +
+                                     ": the file included by *INCLUDE,",
+                                   "give the path of an Abaqus .inp file.");
               load(name, lines, depth + 1);
               continue;
             }

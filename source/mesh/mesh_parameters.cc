@@ -223,6 +223,9 @@ namespace glide
         require(!std::filesystem::is_directory(file, ec),
                 "Parameter '" + path + "/Mesh file': '" + file +
                   "' is a directory; give the path of a .msh or .inp file.");
+        require_regular_file(file,
+                             "Parameter '" + path + "/Mesh file':",
+                             "give the path of a .msh or .inp file.");
         std::ifstream in(file);
         require(static_cast<bool>(in),
                 "Parameter '" + path + "/Mesh file': cannot open '" + file +

@@ -3,6 +3,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <cmath>
+#include <filesystem>
 
 namespace glide
 {
@@ -30,5 +31,22 @@ namespace glide
         numbers.push_back(x);
       }
     return numbers;
+  }
+
+  void
+  require_regular_file(const std::string &file,
+                       const std::string &what,
+                       const std::string &advice)
+  {
+    std::error_code ec;
+    const auto      status = std::filesystem::status(file, ec);
+    require(!std::filesystem::exists(status) ||
+              std::filesystem::is_regular_file(status),
+            what + " '" + file + "' is " +
+              (std::filesystem::is_directory(status) ?
+                 std::string("a directory") :
+                 std::string("not a regular file (a device such as "
+                             "/dev/zero, a pipe or a socket)")) +
+              "; " + advice);
   }
 } // namespace glide

@@ -264,6 +264,11 @@ namespace glide
                   file +
                   "', which is a directory; 'include' takes the path of a "
                   ".prm file.");
+      require_regular_file(file,
+                           chain.empty() ? std::string("The scene file") :
+                                           "The file included by '" +
+                                             chain.back().first + "',",
+                           "give the path of a .prm file.");
       std::ifstream in(file);
       require(static_cast<bool>(in),
               "The scene file '" + file + "'" +
@@ -1093,6 +1098,9 @@ namespace glide
       require(!std::filesystem::is_directory(filename, ec),
               "The scene file '" + filename +
                 "' is a directory; give the path of a .prm file in it.");
+      require_regular_file(filename,
+                           "The scene file",
+                           "give the path of a .prm, .json or .xml file.");
       std::ifstream in(filename);
       require(static_cast<bool>(in),
               "Cannot open the scene file '" + filename +

@@ -42,4 +42,16 @@ namespace glide
   read_numbers(const std::string &text,
                const std::string &path,
                const char         separator = ',');
+
+  /**
+   * Throw an InputError unless @p file, if it exists, is a regular file
+   * (or a link to one): a device (/dev/zero), a pipe or a socket was read
+   * until memory ran out, or forever. The message is @p what (e.g.
+   * "Parameter 'Body b/Mesh file':"), the file, and @p advice. A missing
+   * file passes: the caller's open reports it.
+   */
+  void
+  require_regular_file(const std::string &file,
+                       const std::string &what,
+                       const std::string &advice);
 } // namespace glide
