@@ -90,7 +90,12 @@ namespace glide
     , staging_directory(parent + "/" + name + "/" + staging_name)
     , comm(comm)
     , root(dealii::Utilities::MPI::this_mpi_process(comm) == 0)
-  {}
+  {
+    // A run ended at once by the watchdog (interruption.h) leaves what
+    // this destructor would leave.
+    if (root)
+      set_cleanup_at_once([this] { remove_temporaries(); });
+  }
 
 
 
@@ -98,6 +103,15 @@ namespace glide
   {
     if (!root)
       return;
+    set_cleanup_at_once({});
+    remove_temporaries();
+  }
+
+
+
+  void
+  OutputDirectory::remove_temporaries()
+  {
     std::error_code ec;
     fs::remove_all(staging_directory, ec);
     for (const auto &f : manifest)
@@ -359,6 +373,7 @@ namespace glide
   OutputDirectory::write_tmp(const std::string                         &file,
                              const std::function<void(std::ostream &)> &writer)
   {
+    const StopDeferral writing;
     claim(file);
     const fs::path target = fs::path(directory) / file;
     const fs::path tmp    = fs::path(directory) / (file + ".tmp");
@@ -468,7 +483,8 @@ namespace glide
   void
   OutputDirectory::commit_step(const std::function<void()> &write_indexes)
   {
-    std::string failure;
+    const StopDeferral publishing;
+    std::string        failure;
     if (root)
       try
         {

@@ -1048,6 +1048,22 @@ namespace glide
         if (b.mesh.type == "block")
           for (const auto n : b.mesh.subdivisions)
             coarse *= n;
+        // deal.II's rings have cells of about square shape: pi (R + r) /
+        // (R - r) around (half of them for a half ring), and in 3D as
+        // many along the axis as fit in 'Length' (an inner radius of
+        // 0.99999 made 628 316 coarse cells, unchecked).
+        const auto &m = b.mesh;
+        if ((m.type == "ring" || m.type == "half ring") &&
+            m.inner_radius < m.radius)
+          {
+            const double around =
+              std::ceil(numbers::PI * (m.radius + m.inner_radius) /
+                        (m.radius - m.inner_radius));
+            coarse = m.type == "ring" ? around : std::ceil(around / 2);
+            if (dimension == 3 && m.type == "ring")
+              coarse *= std::ceil(m.length * around /
+                                  (numbers::PI * (m.radius + m.inner_radius)));
+          }
         const double n_cells =
           coarse * std::pow(2., dimension * b.mesh.global_refinements);
         cells += n_cells;
@@ -1062,14 +1078,20 @@ namespace glide
     std::ostringstream text;
     text << std::setprecision(3) << "about " << cells << " cells and " << dofs
          << " unknowns, at least " << bytes / (1 << 30) << " GiB of memory";
-    const bool block =
-      std::any_of(bodies.begin(), bodies.end(), [&](const BodyParameters &b) {
-        return b.name == largest && b.mesh.type == "block";
-      });
+    const auto type_of_largest =
+      std::find_if(bodies.begin(), bodies.end(), [&](const BodyParameters &b) {
+        return b.name == largest;
+      })->mesh.type;
     const std::string advice =
       " Lower " +
-      (block ? "'Body " + largest + "/Block/Subdivisions' or " :
-               std::string()) +
+      (type_of_largest == "block" ?
+         "'Body " + largest + "/Block/Subdivisions' or " :
+       type_of_largest == "ring" || type_of_largest == "half ring" ?
+         "the cells around the ring (about pi (R + r) / (R - r): "
+         "make 'Body " +
+           largest +
+           "/Round shapes/Inner radius' smaller, a thicker ring) or " :
+         std::string()) +
       "'Body " + largest +
       "/Refinement/Global refinements' (each global refinement multiplies "
       "the cells by " +

@@ -2,6 +2,7 @@
 
 #include <mpi.h>
 
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -27,10 +28,35 @@ namespace glide
     int signal_number;
   };
 
-  /// Install the handlers for the signals that stop a run (once, when the
-  /// load steps begin).
+  /**
+   * Install the handlers for the signals that stop a run (once, when the
+   * load steps begin), and a watchdog thread: the run checks for a signal
+   * at safe points, but one linear solve can outlast a batch system's grace
+   * period (MUMPS ignored SIGTERM for 14 minutes on 2.5e6 DoFs). If the
+   * run has not stopped GLIDE_STOP_GRACE seconds (default 10) after the
+   * signal, and no StopDeferral is alive, the watchdog runs the cleanup of
+   * set_cleanup_at_once() and ends the process at once with status 128 +
+   * signal number: the completed steps' files stay, as after SIGKILL.
+   */
   void
   install_interrupt_handlers();
+
+  /// What the watchdog runs before it ends the process at once (empty:
+  /// nothing); replaces the previous one.
+  void
+  set_cleanup_at_once(std::function<void()> cleanup);
+
+  /// While one exists, the watchdog does not end the process (a step's
+  /// files being published).
+  class StopDeferral
+  {
+  public:
+    StopDeferral();
+    ~StopDeferral();
+    StopDeferral(const StopDeferral &) = delete;
+    StopDeferral &
+    operator=(const StopDeferral &) = delete;
+  };
 
   /// The signal received so far on this process, 0 if none.
   int

@@ -130,6 +130,10 @@ namespace glide
     static const char *const staging_name;
 
   private:
+    /// Remove the staging directory and this run's `.tmp` files.
+    void
+    remove_temporaries();
+
     void
     write_manifest();
     /// Claim @p file, write `<file>.tmp` with @p writer and check it;
