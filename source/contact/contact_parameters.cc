@@ -203,6 +203,12 @@ namespace glide
                 "Parameter '" + path + "/Master normals': the normal of '" +
                   set + "' needs " + std::to_string(dim) +
                   " comma-separated numbers, not all zero.");
+        for (const auto &[other, normal] : master_normals)
+          require(other != set,
+                  "Parameter '" + path +
+                    "/Master normals' names the node "
+                    "set '" +
+                    set + "' twice; give each node set one normal.");
         master_normals.emplace_back(set, n);
       }
     require(master_normals.empty() || sliding == "small",

@@ -826,6 +826,40 @@ namespace glide
           }
       }
 
+    // Two pairs that constrain one slave surface against one master put
+    // two constraints on each node (the direct solver failed on the
+    // singular system after 6 cut-backs).
+    for (std::size_t i = 0; i < contact_pairs.size(); ++i)
+      for (std::size_t j = i + 1; j < contact_pairs.size(); ++j)
+        {
+          const auto &a = contact_pairs[i], &b = contact_pairs[j];
+          if (a.master_type != MasterType::surface ||
+              b.master_type != MasterType::surface)
+            continue;
+          const auto list = [](const std::string &text) {
+            const auto            v = Utilities::split_string_list(text, ',');
+            std::set<std::string> names(v.begin(), v.end());
+            return names;
+          };
+          const auto slaves_a = list(a.slave), slaves_b = list(b.slave);
+          const auto masters_a = list(a.master), masters_b = list(b.master);
+          const auto shared = [](const std::set<std::string> &x,
+                                 const std::set<std::string> &y) {
+            for (const auto &n : x)
+              if (y.count(n) > 0)
+                return n;
+            return std::string();
+          };
+          const std::string slave  = shared(slaves_a, slaves_b);
+          const std::string master = shared(masters_a, masters_b);
+          require(slave.empty() || master.empty(),
+                  "Contact pairs '" + a.name + "' and '" + b.name +
+                    "' both constrain the slave surface '" + slave +
+                    "' against the master surface '" + master +
+                    "': each of its nodes would carry two constraints. "
+                    "Remove one of the pairs from 'Contact pairs'.");
+        }
+
     require(!(manufactured_solution != "none" && geometric_nonlinearity),
             "Parameter 'Verification/Manufactured solution' needs a "
             "geometrically linear scene ('Discretization/Geometric "
