@@ -125,4 +125,7 @@ glide_error_test(mesh.axisymmetric_negative_radius "Body 'part': in an axisymmet
 glide_mesh_error_test(abaqus_element_input bad_element_input.inp "12: \\*ELEMENT, INPUT=... is not read by glide; put the data lines into the file, or \\*INCLUDE")
 glide_mesh_error_test(abaqus_include_directory bad_include_directory.inp "9: the file included by \\*INCLUDE, '/' is a directory%3B give the path of an Abaqus .inp file")
 glide_mesh_error_test(abaqus_include_device bad_include_device.inp "9: the file included by \\*INCLUDE, '/dev/zero' is not a regular file")
+# Two physical groups of one dimension with one name were merged in silence
+# (a body fixed at its top as well as its bottom).
+glide_mesh_error_test(gmsh_duplicate_physical_name bad_duplicate_physical_name.msh "7: the physical groups 1 and 2 of dimension 1 are both named 'bottom'%3B glide would merge them")
 glide_mesh_error_test(abaqus_nset_input bad_nset_input.inp "13: \\*NSET, INPUT=... is not read by glide")

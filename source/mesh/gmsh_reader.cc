@@ -410,6 +410,15 @@ namespace glide
                     rest = rest.substr(first + 1, last - first - 1);
                   else
                     rest.erase(0, rest.find_first_not_of(" \t"));
+                  for (const auto &[key, other] : physical_names)
+                    require(key.first != d || other != rest,
+                            where(i) + ": the physical groups " +
+                              std::to_string(key.second) + " and " +
+                              std::to_string(tag) + " of dimension " +
+                              std::to_string(d) + " are both named '" + rest +
+                              "'; glide would merge them into one surface "
+                              "or set. Give them different names, or make "
+                              "them one group.");
                   physical_names[{d, tag}] = rest;
                 }
               expect_end(name);
