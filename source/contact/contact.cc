@@ -570,6 +570,33 @@ namespace glide
         require(n_global > 0,
                 "Contact pair '" + p.name + "': the slave surface '" + p.slave +
                   "' has no nodes.");
+        // A slave surface without area (in an axisymmetric scene, one on
+        // the axis r = 0) carries no pressure: its nodes' constraints were
+        // round-off (CPRESS 4.85e16 at one node, a penetrating node with
+        // no force, exit 0). Its area against that of facets of its size.
+        if (!node_based)
+          {
+            double area = 0., nominal = 0.;
+            for (const auto &node : pair.nodes)
+              {
+                area += std::abs(node.area);
+                nominal += std::pow(node.size, dim - 1) *
+                           (scene.analysis == AnalysisType::axisymmetric ?
+                              2. * numbers::PI * node.size :
+                              1.);
+              }
+            area    = Utilities::MPI::sum(area, comm);
+            nominal = Utilities::MPI::sum(nominal, comm);
+            require(area > 1e-8 * nominal,
+                    "Contact pair '" + p.name + "': the slave surface '" +
+                      p.slave + "' has no area" +
+                      (scene.analysis == AnalysisType::axisymmetric ?
+                         std::string(" (it lies on the axis r = 0 of this "
+                                     "axisymmetric scene)") :
+                         std::string()) +
+                      ", so it carries no contact pressure. Name a surface "
+                      "off the axis as 'Slave'.");
+          }
         if (surface)
           {
             std::set<types::global_dof_index> master_dofs;
