@@ -895,6 +895,37 @@ namespace glide
                     "is then not used), or remove it.");
         }
 
+    // A displacement condition's expression for a component it leaves
+    // free is not used: one that is not 0 is a mistake ('Components = z'
+    // with '0; -0.02*t; 0' loaded nothing, exit 0).
+    for (const auto &bc : boundary_conditions)
+      {
+        const std::string path = "Boundary condition " + bc.name;
+        if (bc.type == BoundaryConditionType::displacement)
+          {
+            const auto parts = Utilities::split_string_list(bc.function, ';');
+            for (unsigned int d = 0; d < dimension && d < parts.size(); ++d)
+              {
+                if (bc.components[d])
+                  continue;
+                double value = 1.;
+                try
+                  {
+                    value = Utilities::string_to_double(parts[d]);
+                  }
+                catch (...)
+                  {}
+                const std::string name(1, "xyz"[d]);
+                require(value == 0.,
+                        "Parameter '" + path + "/Function' gives component " +
+                          name + " the expression '" + parts[d] +
+                          "', but 'Components' leaves " + name +
+                          " free, so it is not used. Add " + name +
+                          " to 'Components', or write 0 there.");
+              }
+          }
+      }
+
     // Every result file's name fits the file systems' limit of 255 bytes
     // (NAME_MAX), with room for 6-digit step numbers and the '.tmp' of a
     // file being written: <scene name>-NNNNNN.vtu.tmp and
