@@ -105,7 +105,10 @@ namespace glide
       "0",
       Patterns::Double(0.),
       "Penalty stiffness (stress per length). 0: automatic, 1000 "
-      "E_pair / h with h the mean slave facet size and E_pair the smaller "
+      "E_pair / h per slave node, with h the mean size of the slave facets "
+      "at the node (so the penetration scales with the local mesh size; "
+      "give a value for a uniform stiffness, e.g. in the penalty patch "
+      "test) and E_pair the smaller "
       "Young's modulus of the slave's and the master's body. Values above "
       "1e12 or below 1e-12 times E / L (L the scene's size) are refused: "
       "double precision cannot resolve the bodies next to the first, and "
