@@ -7,7 +7,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <limits>
 #include <map>
+#include <sstream>
 
 namespace glide
 {
@@ -317,6 +320,30 @@ namespace glide
                 "/Block/Lower corner' and 'Upper corner': every component "
                 "of the upper corner must be larger than that of the lower "
                 "corner.");
+    // Cells of an aspect ratio beyond 1e8 make a stiffness matrix that
+    // double precision cannot factor (2 x 1e-300: the direct solver failed
+    // after 6 cut-backs, naming no parameter).
+    if (m.type == "block")
+      {
+        double smallest = std::numeric_limits<double>::max(), largest = 0.;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double h =
+              (m.upper_corner[d] - m.lower_corner[d]) / m.subdivisions[d];
+            smallest = std::min(smallest, h);
+            largest  = std::max(largest, h);
+          }
+        std::ostringstream ratio;
+        ratio << std::setprecision(3) << largest / smallest;
+        require(largest <= 1e8 * smallest,
+                "Parameters '" + path +
+                  "/Block/Lower corner', 'Upper corner' and 'Subdivisions' "
+                  "make cells with an aspect ratio of " +
+                  ratio.str() +
+                  " (longest to shortest side); double precision cannot "
+                  "solve for cells beyond 1e8. Change 'Subdivisions' so "
+                  "that the cells are closer to square, or the corners.");
+      }
     require_size(m.center, dim, path + "/Round shapes/Center");
     if (!m.refinement_point.empty())
       require_size(m.refinement_point,
