@@ -724,7 +724,7 @@ namespace glide
     prepare_output();
     // From here a signal stops the run between load steps (the steps
     // written are complete); before, it ends the process at once.
-    install_interrupt_handlers();
+    install_interrupt_handlers(Utilities::MPI::this_mpi_process(comm) == 0);
 
     LoadStepper stepper(scene.load_stepping);
     while (stepper.running())

@@ -569,7 +569,13 @@ namespace glide
                               comm);
         require(n_global > 0,
                 "Contact pair '" + p.name + "': the slave surface '" + p.slave +
-                  "' has no nodes.");
+                  "' has no nodes" +
+                  (scene.analysis == AnalysisType::axisymmetric ?
+                     std::string(" with area (a surface on the axis r = 0 "
+                                 "of an axisymmetric scene has none); name "
+                                 "a surface off the axis as 'Slave'") :
+                     std::string()) +
+                  ".");
         // A slave surface without area (in an axisymmetric scene, one on
         // the axis r = 0) carries no pressure: its nodes' constraints were
         // round-off (CPRESS 4.85e16 at one node, a penetrating node with

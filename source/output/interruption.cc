@@ -28,9 +28,29 @@ namespace glide
     /// waits on it.
     sem_t signalled;
 
-    /// SignalBlockers alive: the watchdog does not end the process while
-    /// a step's indexes are being published.
-    std::atomic<int> publishing{0};
+    /// The watchdog's state, under its mutex: the StopDeferrals alive
+    /// (output being written or published), whether the watchdog is ending
+    /// the process (a new StopDeferral then waits for the end), whether it
+    /// is disarmed (the run stopped at its check: its orderly end is not
+    /// cut short), and the cleanup to run before the end with its owner.
+    /// Allocated once and never freed, so that the detached thread never
+    /// sees it destroyed at exit.
+    struct WatchdogState
+    {
+      std::mutex            mutex;
+      int                   deferrals = 0;
+      bool                  ending    = false;
+      bool                  disarmed  = false;
+      std::function<void()> cleanup;
+      const void           *cleanup_owner = nullptr;
+    };
+
+    WatchdogState &
+    state()
+    {
+      static WatchdogState *const s = new WatchdogState;
+      return *s;
+    }
 
     extern "C" void
     record_signal(int signal_number)
@@ -75,13 +95,10 @@ namespace glide
     }
 
     /// Seconds a run has, after a stop signal, to reach its next check
-    /// (GLIDE_STOP_GRACE, default 10).
+    /// (GLIDE_STOP_GRACE, default 10); processes other than the leader
+    /// wait twice as long and one second more, so that the leader, which
+    /// writes the output, ends first and cleans up.
     double grace_seconds = 10.;
-
-    /// What to remove before the process ends at once (the output's
-    /// staging directory and temporary files), under its mutex.
-    std::mutex            cleanup_mutex;
-    std::function<void()> cleanup_at_once;
 
     /**
      * The run checks for a signal at each residual evaluation; a single
@@ -94,27 +111,30 @@ namespace glide
      * lost, as it is when the run stops at its check.
      */
     void
-    watchdog()
+    watchdog(const double grace)
     {
-      // The handlers run in the other threads.
-      const sigset_t set = stop_signals();
-      pthread_sigmask(SIG_BLOCK, &set, nullptr);
       while (sem_wait(&signalled) != 0)
         {}
-      const auto start = std::chrono::steady_clock::now();
+      const auto                   start = std::chrono::steady_clock::now();
+      auto                        &w     = state();
+      std::unique_lock<std::mutex> lock(w.mutex);
       while (std::chrono::steady_clock::now() - start <
-               std::chrono::duration<double>(grace_seconds) ||
-             publishing.load() > 0)
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-      {
-        const std::lock_guard<std::mutex> lock(cleanup_mutex);
-        if (cleanup_at_once)
-          cleanup_at_once();
-      }
+               std::chrono::duration<double>(grace) ||
+             w.deferrals > 0 || w.disarmed)
+        {
+          lock.unlock();
+          std::this_thread::sleep_for(std::chrono::milliseconds(20));
+          lock.lock();
+        }
+      // From here on no output starts (a new StopDeferral waits on the
+      // mutex, held until the end).
+      w.ending = true;
+      if (w.cleanup)
+        w.cleanup();
       const int          s = last_signal;
       std::ostringstream text;
       text << "glide: stopped by " << signal_name(s)
-           << " at once: no safe point to stop at came within " << grace_seconds
+           << " at once: no safe point to stop at came within " << grace
            << " s of the signal (a long linear solve; GLIDE_STOP_GRACE sets "
               "the seconds); the results of the completed load steps are "
               "kept.\n";
@@ -131,7 +151,7 @@ namespace glide
   {}
 
   void
-  install_interrupt_handlers()
+  install_interrupt_handlers(const bool leader)
   {
     struct sigaction action;
     std::memset(&action, 0, sizeof(action));
@@ -151,7 +171,14 @@ namespace glide
               grace_seconds = value;
           }
         sem_init(&signalled, 0, 0);
-        std::thread(watchdog).detach();
+        // The handlers run in the other threads: the watchdog starts with
+        // the stop signals blocked.
+        const sigset_t set = stop_signals();
+        sigset_t       previous;
+        pthread_sigmask(SIG_BLOCK, &set, &previous);
+        std::thread(watchdog, leader ? grace_seconds : 2. * grace_seconds + 1.)
+          .detach();
+        pthread_sigmask(SIG_SETMASK, &previous, nullptr);
         started = true;
       }
     for (const auto &[s, name] : stops)
@@ -170,19 +197,22 @@ namespace glide
     const int s =
       dealii::Utilities::MPI::max(static_cast<int>(last_signal), comm);
     if (s != 0)
-      throw Interrupted(s);
+      {
+        // Stopped at its check: the orderly end is not cut short.
+        const std::lock_guard<std::mutex> lock(state().mutex);
+        state().disarmed = true;
+        throw Interrupted(s);
+      }
   }
 
   SignalBlocker::SignalBlocker()
   {
-    ++publishing;
     const sigset_t set = stop_signals();
     blocked            = (pthread_sigmask(SIG_BLOCK, &set, nullptr) == 0);
   }
 
   SignalBlocker::~SignalBlocker()
   {
-    --publishing;
     if (!blocked)
       return;
     const sigset_t set = stop_signals();
@@ -190,19 +220,37 @@ namespace glide
   }
 
   void
-  set_cleanup_at_once(std::function<void()> cleanup)
+  set_cleanup_at_once(const void *owner, std::function<void()> cleanup)
   {
-    const std::lock_guard<std::mutex> lock(cleanup_mutex);
-    cleanup_at_once = std::move(cleanup);
+    auto                             &w = state();
+    const std::lock_guard<std::mutex> lock(w.mutex);
+    w.cleanup       = std::move(cleanup);
+    w.cleanup_owner = owner;
+  }
+
+  void
+  clear_cleanup_at_once(const void *owner)
+  {
+    auto                             &w = state();
+    const std::lock_guard<std::mutex> lock(w.mutex);
+    if (w.cleanup_owner == owner)
+      {
+        w.cleanup       = {};
+        w.cleanup_owner = nullptr;
+      }
   }
 
   StopDeferral::StopDeferral()
   {
-    ++publishing;
+    auto                             &w = state();
+    const std::lock_guard<std::mutex> lock(w.mutex);
+    ++w.deferrals;
   }
 
   StopDeferral::~StopDeferral()
   {
-    --publishing;
+    auto                             &w = state();
+    const std::lock_guard<std::mutex> lock(w.mutex);
+    --w.deferrals;
   }
 } // namespace glide

@@ -94,7 +94,7 @@ namespace glide
     // A run ended at once by the watchdog (interruption.h) leaves what
     // this destructor would leave.
     if (root)
-      set_cleanup_at_once([this] { remove_temporaries(); });
+      set_cleanup_at_once(this, [this] { remove_temporaries(); });
   }
 
 
@@ -103,7 +103,7 @@ namespace glide
   {
     if (!root)
       return;
-    set_cleanup_at_once({});
+    clear_cleanup_at_once(this);
     remove_temporaries();
   }
 
@@ -296,6 +296,8 @@ namespace glide
   void
   OutputDirectory::claim(const std::string &file)
   {
+    // The watchdog's cleanup reads the manifest: not while it grows.
+    const StopDeferral claiming;
     if (manifest.count(file) > 0)
       return;
     const fs::path dir(directory);

@@ -11,16 +11,24 @@
 
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <string>
 #include <thread>
 
 namespace
 {
-  /// Fork; the child sets the grace, installs the handlers, raises
-  /// SIGTERM, then works for @p busy_seconds without checking and exits
-  /// with status 0. Returns the child's wait status and the seconds it ran.
+  /// Fork; the child sets the grace, installs the handlers (and a cleanup
+  /// that creates the file @p marker), raises SIGTERM, publishes output
+  /// for @p deferred_seconds, then works for @p busy_seconds without
+  /// checking and exits with status 0. Returns the child's wait status and
+  /// the seconds it ran.
   std::pair<int, double>
-  run_child(const char *grace, const double busy_seconds)
+  run_child(const char  *grace,
+            const double busy_seconds,
+            const double deferred_seconds = 0.,
+            const char  *marker           = nullptr)
   {
     const auto  start = std::chrono::steady_clock::now();
     const pid_t pid   = fork();
@@ -28,7 +36,20 @@ namespace
       {
         setenv("GLIDE_STOP_GRACE", grace, 1);
         glide::install_interrupt_handlers();
+        int owner = 0;
+        if (marker != nullptr)
+          glide::set_cleanup_at_once(&owner, [marker] {
+            std::FILE *f = std::fopen(marker, "w");
+            if (f != nullptr)
+              std::fclose(f);
+          });
         std::raise(SIGTERM);
+        {
+          // Output being published: the watchdog waits for its end.
+          const glide::StopDeferral publishing;
+          std::this_thread::sleep_for(
+            std::chrono::duration<double>(deferred_seconds));
+        }
         std::this_thread::sleep_for(
           std::chrono::duration<double>(busy_seconds));
         _exit(0);
@@ -59,4 +80,22 @@ TEST(Interruption, WatchdogWaitsForItsGrace)
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 0);
   EXPECT_LT(seconds, 25.);
+}
+
+TEST(Interruption, WatchdogWaitsForOutputAndRunsTheCleanup)
+{
+  // Grace 0.1 s, output published for 1.5 s after the signal: the watchdog
+  // ends the child only after it (at least 1.5 s), and first runs the
+  // cleanup, which leaves a marker file.
+  const std::string marker = (std::filesystem::temp_directory_path() /
+                              ("glide-watchdog-" + std::to_string(getpid())))
+                               .string();
+  std::filesystem::remove(marker);
+  const auto [status, seconds] = run_child("0.1", 20., 1.5, marker.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGTERM);
+  EXPECT_GE(seconds, 1.5);
+  EXPECT_LT(seconds, 10.);
+  EXPECT_TRUE(std::filesystem::exists(marker));
+  std::filesystem::remove(marker);
 }

@@ -36,15 +36,23 @@ namespace glide
    * run has not stopped GLIDE_STOP_GRACE seconds (default 10) after the
    * signal, and no StopDeferral is alive, the watchdog runs the cleanup of
    * set_cleanup_at_once() and ends the process at once with status 128 +
-   * signal number: the completed steps' files stay, as after SIGKILL.
+   * signal number: the completed steps' files stay, as after SIGKILL. A
+   * run that stops at its check (throw_if_interrupted()) disarms it.
+   * Processes other than the @p leader (MPI rank 0, which writes the
+   * output) wait twice the grace and a second more, so that the leader
+   * cleans up first.
    */
   void
-  install_interrupt_handlers();
+  install_interrupt_handlers(const bool leader = true);
 
-  /// What the watchdog runs before it ends the process at once (empty:
-  /// nothing); replaces the previous one.
+  /// What the watchdog runs before it ends the process at once, on behalf
+  /// of @p owner; replaces the previous one.
   void
-  set_cleanup_at_once(std::function<void()> cleanup);
+  set_cleanup_at_once(const void *owner, std::function<void()> cleanup);
+
+  /// Remove the cleanup of @p owner, if it is the one set.
+  void
+  clear_cleanup_at_once(const void *owner);
 
   /// While one exists, the watchdog does not end the process (a step's
   /// files being published).
