@@ -31,6 +31,10 @@ namespace
     "  --print-parameters [FMT]   print every scene parameter with default,\n"
     "                             pattern and documentation; FMT is prm\n"
     "                             (default), json or xml\n"
+    "  --check                    read the scene, build the mesh and the\n"
+    "                             contact pairs and run every input check,\n"
+    "                             print the summary and the warnings, then\n"
+    "                             stop (nothing is solved or written)\n"
     "  --set \"Path/Entry=value\"   override a scene parameter after reading\n"
     "                             the file, e.g. --set \"Body block/Refinement/\n"
     "                             Global refinements=3\" (repeatable)\n"
@@ -87,6 +91,7 @@ main(int argc, char **argv)
     {
       std::vector<std::string> args(argv + 1, argv + argc), overrides;
       std::string              scene_file;
+      bool                     check_only = false;
       for (unsigned int i = 0; i < args.size(); ++i)
         {
           const std::string &a = args[i];
@@ -124,6 +129,11 @@ main(int argc, char **argv)
                 }
               return 0;
             }
+          if (a == "--check")
+            {
+              check_only = true;
+              continue;
+            }
           if (a == "--set")
             {
               glide::require(i + 1 < args.size(),
@@ -144,9 +154,9 @@ main(int argc, char **argv)
 
       const glide::Scene scene = glide::Scene::read(scene_file, overrides);
       if (scene.dimension == 2)
-        glide::run_scene<2>(scene, comm);
+        glide::run_scene<2>(scene, comm, check_only);
       else
-        glide::run_scene<3>(scene, comm);
+        glide::run_scene<3>(scene, comm, check_only);
     }
   catch (const glide::InputError &e)
     {

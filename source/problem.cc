@@ -236,6 +236,8 @@ namespace glide
     for (unsigned int i = 0; i < effects.size(); ++i)
       pcout << (i ? "; " : "") << effects[i];
     pcout << std::endl;
+    for (const auto &note : scene.unused)
+      pcout << "  warning: " << note << std::endl;
     for (const auto &note : mesh_notes(scene))
       pcout << "  warning: " << note << std::endl;
     for (const auto &note : elasticity.get_mesh().notes())
@@ -709,7 +711,7 @@ namespace glide
 
   template <int dim>
   void
-  Problem<dim>::run()
+  Problem<dim>::run(const bool check_only)
   {
     Timer wall(comm);
     setup();
@@ -721,6 +723,13 @@ namespace glide
       }
     for (const auto &m : contact.take_messages())
       pcout << "  " << m << std::endl;
+    if (check_only)
+      {
+        pcout << "glide: --check: the scene is set up and checked; nothing "
+                 "was solved or written."
+              << std::endl;
+        return;
+      }
     prepare_output();
     // From here a signal stops the run between load steps (the steps
     // written are complete); before, it ends the process at once.
@@ -857,7 +866,7 @@ namespace glide
 
   template <int dim>
   void
-  run_scene(const Scene &scene, MPI_Comm comm)
+  run_scene(const Scene &scene, MPI_Comm comm, const bool check_only)
   {
     ConditionalOStream pcout(std::cout,
                              Utilities::MPI::this_mpi_process(comm) == 0);
@@ -873,7 +882,7 @@ namespace glide
                         TimerOutput::wall_times);
       try
         {
-          Problem<dim>(scene, comm, pcout, timer).run();
+          Problem<dim>(scene, comm, pcout, timer).run(check_only);
         }
       catch (...)
         {
@@ -885,9 +894,9 @@ namespace glide
   }
 
   template void
-  run_scene<2>(const Scene &, MPI_Comm);
+  run_scene<2>(const Scene &, MPI_Comm, bool);
   template void
-  run_scene<3>(const Scene &, MPI_Comm);
+  run_scene<3>(const Scene &, MPI_Comm, bool);
   template class Problem<2>;
   template class Problem<3>;
 } // namespace glide

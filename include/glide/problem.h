@@ -28,11 +28,14 @@ namespace glide
    * step back when it fails, and after each converged step write the
    * statistics row and the VTU file. Returns normally when the last step
    * converged; throws std::runtime_error with the reason when a step fails
-   * after all cut-backs, and InputError for mistakes in the scene.
+   * after all cut-backs, and InputError for mistakes in the scene. With
+   * @p check_only (`glide --check`) it stops after the set-up and its
+   * checks: the summary and the warnings are printed, nothing is solved or
+   * written.
    */
   template <int dim>
   void
-  run_scene(const Scene &scene, MPI_Comm comm);
+  run_scene(const Scene &scene, MPI_Comm comm, bool check_only = false);
 
   /**
    * The problem of one scene and its load stepper: the bodies, the contact
@@ -50,9 +53,10 @@ namespace glide
             dealii::ConditionalOStream &pcout,
             dealii::TimerOutput        &timer);
 
-    /// Every load step to the end (or an exception).
+    /// Every load step to the end (or an exception); with @p check_only
+    /// the set-up, its checks and the summary only.
     void
-    run();
+    run(bool check_only = false);
 
   private:
     /// Bodies, contact pairs, the system's layout, the solvers' choice.

@@ -214,6 +214,12 @@ namespace glide
             "Parameters '" + path +
               "/Element set' and 'Part' pick a body "
               "out of a mesh file; they need 'Mesh = file'.");
+    // Forgetting 'Mesh = file' would mesh the default block in silence.
+    require(type == "file" || Utilities::trim(file).empty(),
+            "Parameter '" + path + "/Mesh file' = '" + file +
+              "' is given, but 'Mesh = " + type +
+              "' builds the body itself; set 'Mesh = file' to read the "
+              "file, or remove 'Mesh file'.");
     if (type == "file")
       {
         require(!file.empty(),

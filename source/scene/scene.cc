@@ -1430,6 +1430,9 @@ namespace glide
       {
         throw InputError("In scene file '" + filename + "': " + e.what());
       }
+    ParameterHandler defaults;
+    declare_parameters(defaults, bodies, conditions, node_sets, pairs);
+    scene.unused = scene.unused_entries(prm, defaults);
     return scene;
   }
 

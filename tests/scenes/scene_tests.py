@@ -38,7 +38,7 @@ def run(scene, *sets, name=None, expect_status=0, mpi=False, output=None, timeou
     name = name or os.path.splitext(os.path.basename(scene))[0]
     cmd = [ARGS.glide, scene, "--set", f"Output/Directory={output}", "--set", f"Scene name={name}"]
     for s in sets:
-        cmd += ["--set", s]
+        cmd += [s] if s.startswith("--") else ["--set", s]
     if mpi:
         cmd = ARGS.mpirun.split() + cmd
     try:
@@ -1946,6 +1946,85 @@ def case_refinement_point_off_the_body():
         else:
             check(len(warned) == 1 and "warning: body 'block'" in warned[0] and said in warned[0],
                   f"point {point}, radius {radius}: one warning: {warned}")
+
+
+def case_unused_entries():
+    """P4.2: an entry that the scene's configuration does not use is named
+    in a set-up warning with the reason (until 2026-12-06 a 'Function' on a
+    fixed boundary, a 'Penalty stiffness' with hard contact, a rigid motion
+    of a deformable body, rigid-master entries with a meshed master and a
+    body force on a rigid body were ignored in silence). Each entry below
+    gets exactly one warning; the block's answer does not change (they are
+    unused); a default written with other spacing, or an entry that is
+    used, gets none."""
+    unused = [("Boundary condition bottom/Function=0; -0.1*t",
+               "'Boundary condition bottom/Function' = '0; -0.1*t' is not used: 'Type = fixed' holds u = 0"),
+              ("Boundary condition bottom/Components=y",
+               "'Boundary condition bottom/Components' = 'y' is not used: it selects the components of "
+               "'Type = displacement' only; 'Type = fixed' acts on every component"),
+              ("Boundary condition load/Components=x",
+               "'Boundary condition load/Components' = 'x' is not used"),
+              ("Body block/Rigid body/Translation=t; 0",
+               "'Body block/Rigid body/Translation' = 't; 0' is not used: 'Rigid body/Rigid' is false"),
+              ("Body block/Round shapes/Radius=3",
+               "'Body block/Round shapes/Radius' = '3' is not used: 'Mesh = block' has no round shape"),
+              ("Body block/Refinement/Refinement radius=0.3",
+               "'Body block/Refinement/Refinement radius' = '0.3' is not used: 'Local refinements' is 0"),
+              ("Linear solver/Relative tolerance=1e-6",
+               "'Linear solver/Relative tolerance' = '1e-6' is not used: 'Type = direct'"),
+              ("Output/Every n steps=2", "'Output/Every n steps' = '2' is not used: 'Write VTU' is false")]
+    quiet = ["Body block/Round shapes/Center=0,0", "Linear solver/Type=direct", "Output/Write VTU=false"]
+    rows, log, _ = run(scene("block.prm"), *quiet, name="plain")
+    check(abs(rows[-1]["reaction_bottom_y"] - 10.) < 1e-9, "plain block: R_y = 10")
+    check("is not used" not in log, "defaults and used entries give no warning")
+    rows_u, log_u, _ = run(scene("block.prm"), *quiet, *(e for e, _ in unused), name="unused")
+    for entry, said in unused:
+        lines = [line for line in log_u.splitlines() if said in line]
+        check(len(lines) == 1 and "warning:" in lines[0], f"{entry}: one warning saying {said!r}: {lines}")
+    check(log_u.count("is not used") == len(unused), f"{len(unused)} warnings: {log_u.count('is not used')}")
+    for key in ("reaction_bottom_x", "reaction_bottom_y"):
+        check(rows_u[-1][key] == rows[-1][key], f"{key} unchanged by the unused entries")
+    # Contact pairs: with a rigid circle and with a meshed rigid body.
+    _, log, _ = run(scene_file("rigid-punch.prm"), "--check", "Contact pair punch/Penalty stiffness=1e6",
+                    "Contact pair punch/Smoothing fraction=0.3", "Contact pair punch/Rigid master/Normal=1, 0",
+                    name="circle")
+    for said in ("'Contact pair punch/Penalty stiffness' = '1e6' is not used: 'Enforcement = hard' has no penalty",
+                 "'Contact pair punch/Smoothing fraction' = '0.3' is not used: an analytical rigid master "
+                 "('rigid circle') is smooth already",
+                 "'Contact pair punch/Rigid master/Normal' = '1, 0' is not used"):
+        check(log.count(said) == 1, f"rigid circle: {said!r}")
+    _, log, _ = run(scene_file("rigid-punch.prm"), "--check", "Contact pair punch/Penalty stiffness=1e6",
+                    "Contact pair punch/Enforcement=penalty", name="circle_penalty")
+    check("is not used" not in log, "a penalty stiffness with penalty enforcement is used")
+    _, log, _ = run(scene_file("rigid-punch-meshed.prm"), "--check",
+                    "Contact pair punch/Rigid master/Translation=0; -5*t", "Body punch/Body force=0; -1*t",
+                    name="meshed")
+    for said in ("'Contact pair punch/Rigid master/Translation' = '0; -5*t' is not used: the master is the "
+                 "surface 'punch.curved' of a body",
+                 "'Body punch/Body force' = '0; -1*t' is not used: a meshed rigid body"):
+        check(log.count(said) == 1, f"meshed rigid punch: {said!r}")
+
+
+def case_check_only():
+    """--check sets the scene up and runs every input check, prints the
+    summary and the warnings and stops: exit 0, nothing written, no load
+    step; a mistake found in the set-up (an unknown surface, found only
+    once the mesh exists) is still an input error."""
+    out = tempfile.mkdtemp(prefix="glide-check-")
+    p = subprocess.run([ARGS.glide, scene_file("rigid-punch-meshed.prm"), "--check", "--set",
+                        f"Output/Directory={out}"], capture_output=True, text=True, timeout=120)
+    check(p.returncode == 0, f"--check: exit 0 ({p.returncode}): {p.stderr[-300:]}")
+    check("glide: scene 'rigid-punch-meshed'" in p.stdout and "active effects:" in p.stdout,
+          "--check prints the summary")
+    check("glide: --check: the scene is set up and checked; nothing was solved or written." in p.stdout,
+          "--check says that it stopped")
+    check("step" not in p.stdout.lower().replace("load steps", ""), f"no load step: {p.stdout[-400:]}")
+    check(os.listdir(out) == [], f"nothing written: {os.listdir(out)}")
+    p = subprocess.run([ARGS.glide, scene("block.prm"), "--check", "--set", "Boundary condition bottom/Surface=block.lid",
+                        "--set", f"Output/Directory={out}"], capture_output=True, text=True, timeout=120)
+    check(p.returncode == 1 and "block.lid': no such surface" in p.stderr,
+          f"--check: a set-up mistake is an input error ({p.returncode}): {p.stderr[-300:]}")
+    shutil.rmtree(out, ignore_errors=True)
 
 
 def case_output_directory_in_home():

@@ -68,6 +68,11 @@ namespace glide
     std::vector<ContactPairParameters>       contact_pairs;
     /// Name of the manufactured solution for verification, or "none".
     std::string manufactured_solution = "none";
+    /// Warnings for the log: entries the scene gives (other than their
+    /// defaults) that its configuration does not use, each with the
+    /// reason (a 'Function' of a fixed boundary, a 'Penalty stiffness'
+    /// with hard enforcement, a rigid motion of a deformable body, ...).
+    std::vector<std::string> unused;
 
     NonlinearSolverParameters nonlinear_solver;
     LinearSolverParameters    linear_solver;
@@ -119,6 +124,11 @@ namespace glide
     parse_parameters(dealii::ParameterHandler &prm);
     void
     check() const;
+    /// The notes of #unused, from the parsed file @p prm and a handler
+    /// @p defaults declared with the same names and nothing parsed.
+    std::vector<std::string>
+    unused_entries(const dealii::ParameterHandler &prm,
+                   const dealii::ParameterHandler &defaults) const;
     /// Refuse a mesh that cannot fit in memory, before it is built.
     void
     check_size() const;
