@@ -202,6 +202,30 @@ namespace glide
 
     NonlinearSolverParameters newton_parameters = scene.nonlinear_solver;
     newton_parameters.round_off_floor           = round_off_floor();
+    // The tolerance is a strain (residual over E_min A_ref): loads that
+    // strain the bodies by less than it were 'converged' at U = 0 (a
+    // silicon beam under its own weight, strain 1e-13: zero sag, exit 0).
+    // Where the loads and prescribed displacements strain the bodies by
+    // less than 1e-6, the tolerance and the bodies' round-off floor shrink
+    // with them, so that the residual left is at most tolerance x 1e6 of
+    // the largest load (1e-4 at the default). Not where an analytical
+    // rigid master moves: its motion, not measured here, may strain more.
+    bool master_moves = false;
+    for (const auto &p : scene.contact_pairs)
+      master_moves =
+        master_moves || (p.master_type != MasterType::surface &&
+                         (!Utilities::trim(p.translation).empty() ||
+                          Utilities::trim(p.rotation) != "0"));
+    const double strain = elasticity.driving_strain();
+    if (strain > 0. && strain < small_strain && !master_moves)
+      {
+        tolerance_factor = strain / small_strain;
+        newton_parameters.tolerance *= tolerance_factor;
+        newton_parameters.step_tolerance *= tolerance_factor;
+        newton_parameters.round_off_floor =
+          std::max(elasticity.round_off_floor() * tolerance_factor,
+                   contact.round_off_floor());
+      }
     newton_parameters.linear_problem =
       !contact.active() && !scene.geometric_nonlinearity;
     newton = std::make_unique<NonlinearSolver>(newton_parameters, comm);
@@ -236,6 +260,17 @@ namespace glide
     for (unsigned int i = 0; i < effects.size(); ++i)
       pcout << (i ? "; " : "") << effects[i];
     pcout << std::endl;
+    if (tolerance_factor < 1.)
+      pcout << "  note: the loads and prescribed displacements strain the "
+               "bodies by at most "
+            << elasticity.driving_strain()
+            << "; 'Nonlinear solver/Tolerance' is taken relative to that "
+               "(x "
+            << tolerance_factor << ": "
+            << scene.nonlinear_solver.tolerance * tolerance_factor
+            << "), so that the residual left is at most "
+            << scene.nonlinear_solver.tolerance / small_strain
+            << " of the largest load." << std::endl;
     for (const auto &note : scene.unused)
       pcout << "  warning: " << note << std::endl;
     for (const auto &note : mesh_notes(scene))
@@ -799,6 +834,8 @@ namespace glide
         if (result.at_floor)
           pcout << "  Note: accepted above 'Nonlinear solver/Tolerance' = "
                 << scene.nonlinear_solver.tolerance
+                << (tolerance_factor < 1. ? " (x the loads' strain, above)" :
+                                            "")
                 << ": KINSOL could not reduce the residual further, and "
                 << scientific(result.residual_norm)
                 << " is within the round-off floor "

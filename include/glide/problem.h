@@ -145,6 +145,11 @@ namespace glide
     /// Whether the current attempt ends as soon as a slave node alternates
     /// between two facets (so that the next one can hold it).
     bool stop_on_alternation = true;
+    /// Loads that strain the bodies by less than this get a tolerance
+    /// relative to them (setup()).
+    static constexpr double small_strain = 1e-6;
+    /// The factor on 'Nonlinear solver/Tolerance' for such loads, 1 else.
+    double tolerance_factor = 1.;
     /// The iterate at which an attempt stopped for alternating nodes.
     VectorType restart;
     bool       have_restart = false;

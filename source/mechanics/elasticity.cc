@@ -1981,6 +1981,7 @@ namespace glide
               "): positions then keep no digit of the meshes' geometry. "
               "Check the displacements' units and the rigid bodies' "
               "'Rotation center'.");
+    driving_strain_ = std::max(largest_scaled_load, largest_displacement / L);
     check_conditions(1.);
     for (const auto &cp : scene.contact_pairs)
       if (cp.enforcement == Enforcement::penalty && cp.penalty_stiffness > 0)

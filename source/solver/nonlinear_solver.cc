@@ -182,7 +182,7 @@ namespace glide
                                            KINSOL::AdditionalData::linesearch,
                                          parameters.maximum_iterations,
                                          parameters.tolerance,
-                                         /*step_tolerance=*/1e-14,
+                                         parameters.step_tolerance,
                                          /*no_init_setup=*/false,
                                          parameters.maximum_setup_calls,
                                          maximum_step);

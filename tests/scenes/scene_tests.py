@@ -2027,6 +2027,33 @@ def case_check_only():
     shutil.rmtree(out, ignore_errors=True)
 
 
+def case_small_loads():
+    """P2: loads that strain the bodies by less than the Newton tolerance
+    (a strain) are solved, not taken as converged at U = 0 (until
+    2026-12-06 a silicon beam under its own weight, strain 1e-13, gave zero
+    sag and exit 0; so did a traction of 5 on E = 1e14). The block of
+    tests/scenes/block.prm is linear, so its reactions scale with the load:
+    with E = 1e14 the bottom reaction balances the traction (-2, 10) to
+    1e-8; a prescribed displacement of 1e-12 gives 1e-9 of the reaction of
+    1e-3, to 1e-8; the log says the tolerance was taken relative to the
+    loads. A traction at ordinary strains keeps its tolerance (no note)."""
+    rows, log, _ = run(scene("block.prm"), "Body block/Material/Young's modulus=1e14", "Output/Write VTU=false",
+                       name="stiff")
+    check(abs(rows[-1]["reaction_bottom_x"] + 2.) < 2e-8 and abs(rows[-1]["reaction_bottom_y"] - 10.) < 1e-7,
+          f"E = 1e14: R = (-2, 10): ({rows[-1]['reaction_bottom_x']}, {rows[-1]['reaction_bottom_y']})")
+    check(rows[-1]["kinsol_iterations"] >= 1, "at least one Newton iteration")
+    check("is taken relative to that" in log, "the log says why the tolerance is finer")
+    moved = []
+    for d in ("1e-3", "1e-12"):
+        rows, log, _ = run(scene("block.prm"), "Boundary condition load/Type=displacement",
+                           f"Boundary condition load/Function=0; -{d}*t", "Output/Write VTU=false", name="moved")
+        moved.append(rows[-1]["reaction_bottom_y"])
+        check(("is taken relative to that" in log) == (d == "1e-12"), f"displacement {d}: note only when tiny")
+    check(abs(moved[1] / moved[0] - 1e-9) < 1e-17, f"reaction scales with the displacement: {moved}")
+    _, log, _ = run(scene("block.prm"), "Output/Write VTU=false", name="ordinary")
+    check("is taken relative" not in log, "ordinary loads: the tolerance as given")
+
+
 def case_output_directory_in_home():
     """P5.1: 'Output/Directory = ~/results' is taken as a shell takes it,
     under $HOME (until 2026-12-06 glide made a directory named '~' in the

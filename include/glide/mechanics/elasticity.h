@@ -181,6 +181,17 @@ namespace glide
     bool
     round_off_floor_from_loads() const;
 
+    /// How much the scene's loads and prescribed displacements strain its
+    /// bodies (after check_inputs()): the largest scaled nodal load
+    /// (units of residual_scale(), a strain) or the largest prescribed
+    /// displacement over the scene's size, whichever is larger, at the
+    /// first and the last load factor; 0 if neither loads nor moves.
+    double
+    driving_strain() const
+    {
+      return driving_strain_;
+    }
+
     /// Young's modulus of body @p b, +infinity for a rigid body.
     double
     youngs_modulus_of_body(const unsigned int b) const;
@@ -447,6 +458,8 @@ namespace glide
     /// The largest nodal load at the first and the last load factor, in
     /// units of residual_scale() (set by check_inputs()).
     double largest_scaled_load = 0.;
+    /// See driving_strain().
+    double driving_strain_ = 0.;
     bool   axisymmetric;
   };
 } // namespace glide

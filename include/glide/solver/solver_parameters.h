@@ -24,6 +24,8 @@ namespace glide
     /// from the scene): a solve that stops above the tolerance but at or
     /// below this counts as converged, and says so (Result::at_floor).
     double round_off_floor = 0.;
+    /// KINSOL's scaled step tolerance (set by the problem, not read).
+    double step_tolerance = 1e-14;
     /// A linear problem (no contact, geometrically linear; set by the
     /// problem, not read): its first Newton step is the solution, so KINSOL
     /// takes it whatever its length. Otherwise KINSOL's default bound on a
