@@ -657,6 +657,8 @@ namespace glide
                             const unsigned int             cut_backs,
                             const double                   wall_time)
   {
+    const bool write_vtu =
+      scene.output.write_vtu && (step % scene.output.every == 0 || t >= 1.);
     std::vector<std::pair<std::string, std::string>> row{
       {"step", std::to_string(step)},
       {"load_factor", format_number(t)},
@@ -695,9 +697,10 @@ namespace glide
         {
           const auto  fields = contact.nodal_fields(U, t);
           std::string failure;
+          // The contact VTU with the bodies' (every n-th step and the
+          // last; until 2026-12-06 every step), the CSV every step.
           if (contact_output)
-            failure =
-              contact_output->write(fields, step, t, scene.output.write_vtu);
+            failure = contact_output->write(fields, step, t, write_vtu);
           throw_output_error_on_any_process(failure, comm);
         }
       if (scene.manufactured_solution != "none")
@@ -708,40 +711,43 @@ namespace glide
         }
     }
     statistics->add_row(row);
-    const bool write_vtu =
-      scene.output.write_vtu && (step % scene.output.every == 0 || t >= 1.);
     TimerOutput::Scope s(timer, "output");
     if (write_vtu)
-      {
-        // The nodal contact forces on both sides of every pair (the
-        // contact part of the residual, as a force on the bodies; zero
-        // where a displacement is prescribed).
-        VectorType contact_force;
-        if (contact.active())
-          {
-            // All nodal contact forces, those at nodes with prescribed
-            // displacements too (they were written as 0 there).
-            contact_force.reinit(U);
-            contact.nodal_forces(U, contact_force);
-            contact_force *= -1.;
-          }
-        vtu->write(step, t, U, contact.active() ? &contact_force : nullptr);
-        if (const auto n = vtu->inverted_points(); n > 0)
-          pcout << "  warning: the stress fields of this step's VTU are NaN "
-                   "at "
-                << n
-                << " output point(s) where det F <= 0: vertices of strongly "
-                   "distorted cells, where the solution (det F > 0 at the "
-                   "quadrature points) inverts the cell. Refine the mesh "
-                   "there or use smaller load steps."
-                << std::endl;
-      }
+      write_bodies(step);
     // The indexes (.pvd files, statistics.csv) after the data they list.
     output->commit_step([&]() {
       if (write_vtu)
         vtu->write_pvd();
       statistics->write();
     });
+  }
+
+  template <int dim>
+  void
+  Problem<dim>::write_bodies(const unsigned int step)
+  {
+    // The nodal contact forces on both sides of every pair (the
+    // contact part of the residual, as a force on the bodies; zero
+    // where a displacement is prescribed).
+    VectorType contact_force;
+    if (contact.active())
+      {
+        // All nodal contact forces, those at nodes with prescribed
+        // displacements too (they were written as 0 there).
+        contact_force.reinit(U);
+        contact.nodal_forces(U, contact_force);
+        contact_force *= -1.;
+      }
+    vtu->write(step, t, U, contact.active() ? &contact_force : nullptr);
+    if (const auto n = vtu->inverted_points(); n > 0)
+      pcout << "  warning: the stress fields of this step's VTU are NaN "
+               "at "
+            << n
+            << " output point(s) where det F <= 0: vertices of strongly "
+               "distorted cells, where the solution (det F > 0 at the "
+               "quadrature points) inverts the cell. Refine the mesh "
+               "there or use smaller load steps."
+            << std::endl;
   }
 
   template <int dim>
@@ -819,7 +825,33 @@ namespace glide
         if (!result.converged)
           {
             pcout << "  step failed: " << result.message << std::endl;
-            stepper.reject(result.message + elasticity.holding_hint());
+            try
+              {
+                stepper.reject(result.message + elasticity.holding_hint());
+              }
+            catch (const std::runtime_error &)
+              {
+                // The run ends here: the last converged state, the one to
+                // look at, goes into the VTU files if 'Every n steps' left
+                // it out (until 2026-12-06 it was not written).
+                if (scene.output.write_vtu && stepper.steps() > 0 &&
+                    stepper.steps() % scene.output.every != 0)
+                  {
+                    t = stepper.time();
+                    contact.set_time(t);
+                    {
+                      TimerOutput::Scope s(timer, "output");
+                      write_bodies(stepper.steps());
+                      output->commit_step([&]() { vtu->write_pvd(); });
+                    }
+                    pcout << "  the bodies' VTU of step " << stepper.steps()
+                          << " (load factor " << t
+                          << "), the last that converged, is written for "
+                             "the diagnosis"
+                          << std::endl;
+                  }
+                throw;
+              }
             t = t_old;
             pcout << "  cutting back: new increment " << stepper.increment()
                   << " (cut-back " << stepper.step_cut_backs() << " of at most "

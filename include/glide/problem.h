@@ -53,6 +53,12 @@ namespace glide
             dealii::ConditionalOStream &pcout,
             dealii::TimerOutput        &timer);
 
+    /// The bodies' VTU file of converged step @p step (state U at load
+    /// factor t, contact forces included), listed in the .pvd once the
+    /// caller commits the step.
+    void
+    write_bodies(unsigned int step);
+
     /// Every load step to the end (or an exception); with @p check_only
     /// the set-up, its checks and the summary only.
     void

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <sstream>
 
 namespace glide
 {
@@ -166,9 +167,24 @@ namespace glide
           normals[k] = n / n.norm();
       }
 
-    // R8.1: user normals replace the computed ones.
+    // R8.1: user normals replace the computed ones; one that points into
+    // the master (against the averaged outward normal) is a mistake (the
+    // slave node there went through the master with exit 0 until
+    // 2026-12-06).
     for (const auto &[k, n] : user_normals)
-      normals[k] = n / n.norm();
+      {
+        if (inward.empty() && n * normals[k] <= 0.)
+          {
+            std::ostringstream text;
+            text << "the normal (" << n << ") given at the master node ("
+                 << nodes[k].X
+                 << ") points into the master: the master surface's "
+                    "outward normal there is ("
+                 << normals[k] << ")";
+            inward = text.str();
+          }
+        normals[k] = n / n.norm();
+      }
 
     // Search tree of the facets in the initial configuration, for the
     // anchors.

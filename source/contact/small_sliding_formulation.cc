@@ -74,6 +74,14 @@ namespace glide
                                               !scene.geometric_nonlinearity,
                                               scene.analysis ==
                                                 AnalysisType::axisymmetric);
+        throw_first_failure<InputError>(
+          planes->inward_user_normal().empty() ?
+            std::string() :
+            "Parameter '" + path +
+              "/Master normals': " + planes->inward_user_normal() +
+              ". Give the normal that points out of the master, towards "
+              "the slave.",
+          comm);
         // The only search of small sliding, once (counted as search time).
         const auto start = std::chrono::steady_clock::now();
         if (surface_to_surface)

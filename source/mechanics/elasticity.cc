@@ -378,6 +378,7 @@ namespace glide
         if (bc.type == BoundaryConditionType::force)
           {
             PointForce pf;
+            pf.path     = path;
             pf.function = parse_function(bc.function, dim, path + "/Function");
             pf.nodes    = find_nodes(bc.surface, path + "/Surface", true);
             point_forces.push_back(std::move(pf));
@@ -1146,6 +1147,17 @@ namespace glide
       return s.str();
     }
 
+    /// A physical quantity for messages (a modulus, a force, an area):
+    /// short, and not rounded to 0 however small ('Young's modulus (0)'
+    /// was printed for 1e-99).
+    std::string
+    quantity(const double x)
+    {
+      std::ostringstream s;
+      s << std::setprecision(4) << x;
+      return s.str();
+    }
+
     /**
      * A basis of the null space of the symmetric positive semi-definite
      * matrix @p G (at most 6 x 6), from its reduced row echelon form with
@@ -1326,7 +1338,8 @@ namespace glide
             FreeMotion motion;
             if (axisymmetric)
               {
-                motion.text = "translation along the axis (y)";
+                motion.text    = "translation along the axis (y)";
+                motion.axis[1] = 1.;
                 result[b].push_back(motion);
                 continue;
               }
@@ -1348,6 +1361,8 @@ namespace glide
             if (w.norm() * L < 1e-8 * t.norm())
               {
                 t /= t.norm();
+                for (unsigned int d = 0; d < dim; ++d)
+                  motion.axis[d] = t[d];
                 unsigned int nonzero = 0, along = 0;
                 for (unsigned int d = 0; d < dim; ++d)
                   if (std::abs(t[d]) > 1e-8)
@@ -1943,10 +1958,10 @@ namespace glide
                   "The loads ('Function' of the traction, pressure and "
                   "force conditions, 'Body force') reach a nodal force "
                   "of " +
-                  short_number(largest_load) + ", " + short_number(strain) +
+                  quantity(largest_load) + ", " + quantity(strain) +
                   " times the stiffest body's Young's modulus (" +
-                  short_number(E_max) + ") on a face of mean area " +
-                  short_number(reference_area) +
+                  quantity(E_max) + ") on a face of mean area " +
+                  quantity(reference_area) +
                   ": they would deform the bodies by more than " +
                   short_number(maximum_motion) +
                   " times their size, which double precision cannot "
@@ -1958,11 +1973,10 @@ namespace glide
         // material takes such strains: a failed step's note says so.
         if (strain > 100.)
           holding_hints.push_back(
-            "the loads reach a nodal force of " + short_number(largest_load) +
-            ", " + short_number(strain) +
-            " times the stiffest body's Young's modulus (" +
-            short_number(E_max) + ") on a face of mean area " +
-            short_number(reference_area) +
+            "the loads reach a nodal force of " + quantity(largest_load) +
+            ", " + quantity(strain) +
+            " times the stiffest body's Young's modulus (" + quantity(E_max) +
+            ") on a face of mean area " + quantity(reference_area) +
             ": strains of that size are beyond any material, and a "
             "geometrically nonlinear body folds under them. Check that the "
             "loads, "
@@ -1982,6 +1996,36 @@ namespace glide
               "Check the displacements' units and the rigid bodies' "
               "'Rotation center'.");
     driving_strain_ = std::max(largest_scaled_load, largest_displacement / L);
+    // A radial force on a node of the axis acts on nothing: u_r = 0 holds
+    // there, and its reaction takes the force (until 2026-12-06 a force of
+    // 1000 in r on the axis nodes gave zero displacement and exit 0).
+    if (axisymmetric)
+      for (const auto &pf : point_forces)
+        {
+          std::string example;
+          for (const double t : {first, 1.})
+            {
+              pf.function->set_time(t);
+              for (const auto &[node_dofs, x] : pf.nodes)
+                if (example.empty() && std::abs(x[0]) < 1e-10 * L &&
+                    pf.function->value(x, 0) != 0.)
+                  example = "(" + short_number(x[0]) + ", " +
+                            short_number(x[1]) + ") at load factor " +
+                            short_number(t) + ": " +
+                            short_number(pf.function->value(x, 0));
+            }
+          for (const auto &e : Utilities::MPI::all_gather(comm, example))
+            if (!e.empty())
+              throw InputError(
+                file + "'" + pf.path +
+                "' applies a radial force to a node on the axis of the "
+                "axisymmetric scene (r = 0; " +
+                e +
+                "), where u_r = 0 holds for a solid of revolution: the "
+                "force would act on nothing. Give it no radial component "
+                "there (its first expression 0; a force on the axis acts "
+                "along it, in y), or apply it off the axis.");
+        }
     check_conditions(1.);
     for (const auto &cp : scene.contact_pairs)
       if (cp.enforcement == Enforcement::penalty && cp.penalty_stiffness > 0)

@@ -79,10 +79,18 @@ namespace glide
       return s;
     }
 
-    /// Read @p file into @p lines, expanding *INCLUDE, INPUT=<file>.
+    /// Read @p file into @p lines, expanding *INCLUDE, INPUT=<file>;
+    /// @p chain holds the files being read, the outermost first (a file
+    /// that includes one of them is a loop; until 2026-12-06 it ended at
+    /// the depth limit with a message that did not say so).
     void
-    load(const std::string &file, std::vector<Line> &lines, const int depth)
+    load(const std::string        &file,
+         std::vector<Line>        &lines,
+         std::vector<std::string> &chain)
     {
+      std::error_code ec;
+      chain.push_back(std::filesystem::weakly_canonical(file, ec).string());
+      const int     depth = static_cast<int>(chain.size()) - 1;
       std::ifstream in(file);
       require(static_cast<bool>(in),
               "Cannot open the Abaqus file '" + file + "'.");
@@ -97,10 +105,9 @@ namespace glide
           if (upper(t).rfind("*INCLUDE", 0) == 0)
             {
               const auto eq = t.find('=');
-              require(eq != std::string::npos && depth < 10,
+              require(eq != std::string::npos,
                       file_line(file, number) +
-                        ": *INCLUDE needs INPUT=<file> (and at most 10 "
-                        "nested levels).");
+                        ": *INCLUDE needs INPUT=<file>.");
               std::string name = unquote(trim(t.substr(eq + 1)));
               if (!name.empty() && name[0] != '/')
                 name =
@@ -114,11 +121,29 @@ namespace glide
                                    file_line(file, number) +
                                      ": the file included by *INCLUDE,",
                                    "give the path of an Abaqus .inp file.");
-              load(name, lines, depth + 1);
+              const std::string canonical =
+                std::filesystem::weakly_canonical(name, ec).string();
+              if (std::find(chain.begin(), chain.end(), canonical) !=
+                  chain.end())
+                {
+                  std::string loop;
+                  for (const auto &c : chain)
+                    loop += "'" + c + "' -> ";
+                  throw InputError(file_line(file, number) + ": *INCLUDE of '" +
+                                   name + "' makes a loop: " + loop + "'" +
+                                   canonical +
+                                   "'. Remove the *INCLUDE that leads back "
+                                   "to a file that includes it.");
+                }
+              require(depth < 10,
+                      file_line(file, number) +
+                        ": *INCLUDE nests more than 10 levels of files.");
+              load(name, lines, chain);
               continue;
             }
           lines.push_back({file, number, text});
         }
+      chain.pop_back();
     }
 
     /// A keyword line: its name in upper case ("ELEMENT", "END PART") and
@@ -377,7 +402,8 @@ namespace glide
         : file(file)
         , dim(dim)
       {
-        load(file, lines, 0);
+        std::vector<std::string> chain;
+        load(file, lines, chain);
       }
 
       void
@@ -635,6 +661,22 @@ namespace glide
                                   ": the rotation of an instance needs "
                                   "seven numbers: two points of the axis "
                                   "and the angle in degrees.");
+                        // Two distinct points (until 2026-12-06 a zero
+                        // axis made NaN coordinates, reported as an
+                        // element of zero volume elsewhere).
+                        double length = 0., size = 0.;
+                        for (unsigned int d = 0; d < 3; ++d)
+                          {
+                            length += (v[3 + d] - v[d]) * (v[3 + d] - v[d]);
+                            size = std::max(
+                              {size, std::abs(v[d]), std::abs(v[3 + d])});
+                          }
+                        require(v[6] == 0. || std::sqrt(length) > 1e-12 * size,
+                                where(lines[j]) +
+                                  ": the rotation of an instance turns "
+                                  "about the axis through its first two "
+                                  "points, but they coincide; give two "
+                                  "different points of the axis.");
                         inst.rotation = v;
                       }
                     ++n;

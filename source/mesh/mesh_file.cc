@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <iomanip>
 #include <sstream>
 
 namespace glide
@@ -238,17 +239,39 @@ namespace glide
             if (inserted)
               {
                 mesh.vertices.push_back(content.nodes.at(n).x);
-                if (dim == 2)
-                  require(content.nodes.at(n).x[2] == 0.,
-                          file_line(content.file, content.nodes.at(n).line) +
-                            ": node " + std::to_string(n) + " has z = " +
-                            std::to_string(content.nodes.at(n).x[2]) +
-                            ", but the scene is 2D (x, y); a 2D mesh lies "
-                            "in the plane z = 0.");
               }
             cell.push_back(it->second);
           }
         mesh.cells.push_back(cell);
+      }
+    // A 2D mesh lies in the plane z = 0, up to the round-off of a mesh
+    // generator that wrote its coordinates in 3D (1e-14 was refused as
+    // 'z = 0.000000' until 2026-12-06): 1e-10 of the mesh's extent.
+    if (dim == 2)
+      {
+        double extent = 0.;
+        for (unsigned int d = 0; d < 2; ++d)
+          {
+            const auto [low, high] =
+              std::minmax_element(mesh.vertices.begin(),
+                                  mesh.vertices.end(),
+                                  [d](const auto &a, const auto &b) {
+                                    return a[d] < b[d];
+                                  });
+            extent = std::max(extent, (*high)[d] - (*low)[d]);
+          }
+        for (const auto &[n, v] : vertex_of)
+          {
+            auto              &x = mesh.vertices[v];
+            std::ostringstream z;
+            z << std::setprecision(6) << x[2];
+            require(std::abs(x[2]) <= 1e-10 * extent,
+                    file_line(content.file, content.nodes.at(n).line) +
+                      ": node " + std::to_string(n) + " has z = " + z.str() +
+                      ", but the scene is 2D (x, y); a 2D mesh lies in the "
+                      "plane z = 0 (to 1e-10 of its extent).");
+            x[2] = 0.;
+          }
       }
 
     // Cells must not be degenerate or inverted.
@@ -696,7 +719,14 @@ namespace glide
         // Gmsh cells numbered clockwise are renumbered (Abaqus ones were
         // refused in import_body()); then the orientation of shared faces
         // is made consistent, as deal.II's GridIn does.
-        GridTools::invert_all_negative_measure_cells(vertices, cells);
+        // Cell by cell: deal.II's function refuses a mesh whose cells go
+        // both ways (until 2026-12-06 its text reached the user).
+        for (auto &cell : cells)
+          {
+            std::vector<CellData<dim>> one{cell};
+            GridTools::invert_all_negative_measure_cells(vertices, one);
+            cell = one.front();
+          }
         GridTools::consistently_order_cells(cells);
         tria.create_triangulation(vertices, cells, subcell);
       }

@@ -30,8 +30,11 @@ namespace glide
     prm.declare_entry("Every n steps",
                       "1",
                       Patterns::Integer(1),
-                      "Write VTU every n-th converged load step (the last "
-                      "step is always written).");
+                      "Write the bodies' and the contact pairs' VTU files "
+                      "every n-th converged load step (the last step is "
+                      "always written, and so is the last converged step of "
+                      "a run that fails); the statistics and the contact "
+                      "CSV files get every step.");
     prm.leave_subsection();
   }
 

@@ -7,6 +7,34 @@
 
 namespace glide
 {
+  std::string
+  printable_message(const std::string &message)
+  {
+    std::string out;
+    out.reserve(message.size());
+    for (const char c : message)
+      {
+        const auto u = static_cast<unsigned char>(c);
+        if (u < 0x20 && c != '\n' && c != '\t')
+          {
+            static const char hex[] = "0123456789ABCDEF";
+            out += "\\x";
+            out += hex[u >> 4];
+            out += hex[u & 15];
+          }
+        else if (u == 0x7f)
+          out += "\\x7F";
+        else
+          out += c;
+      }
+    constexpr std::size_t longest = 4000, head = 3000, tail = 800;
+    if (out.size() > longest)
+      out = out.substr(0, head) + " [... " +
+            std::to_string(out.size() - head - tail) +
+            " characters left out ...] " + out.substr(out.size() - tail);
+    return out;
+  }
+
   std::vector<double>
   read_numbers(const std::string &text,
                const std::string &path,

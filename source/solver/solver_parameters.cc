@@ -60,7 +60,11 @@ namespace glide
     maximum_setup_calls              = prm.get_integer("Maximum setup calls");
     const std::string tolerance_text = prm.get("Tolerance");
     prm.leave_subsection();
-    require(tolerance > 0. && tolerance <= 1e-6,
+    require(tolerance > 0.,
+            "Parameter 'Nonlinear solver/Tolerance' = " + tolerance_text +
+              " must be positive: round-off leaves every residual above 0, "
+              "so no load step could converge. Use 1e-8 to 1e-12.");
+    require(tolerance <= 1e-6,
             "Parameter 'Nonlinear solver/Tolerance' = " + tolerance_text +
               " is outside (0, 1e-6]: the scaled residual of a load "
               "step's first iterate is often 1e-6 to 1e-3, so a looser "

@@ -2054,6 +2054,120 @@ def case_small_loads():
     check("is taken relative" not in log, "ordinary loads: the tolerance as given")
 
 
+def case_entries_set_twice():
+    """P4.2: an entry that a scene sets twice to different values (in one
+    subsection, in a subsection written twice, or in an included file and
+    the scene) is named in a set-up warning with both lines; the last value
+    holds, as deal.II reads it (until 2026-12-06 in silence: a second
+    'subsection Boundary condition load' turned a traction into a pressure
+    of 0). An entry set twice to the same value, or once in each of two
+    subsections, gets none."""
+    work = tempfile.mkdtemp(prefix="glide-twice-")
+    with open(os.path.join(work, "material.prm"), "w") as f:
+        f.write("# a shared material\nsubsection Material\n  set Poisson's ratio = 0.25\nend\n")
+    with open(os.path.join(work, "twice.prm"), "w") as f:
+        f.write(open(scene("block.prm")).read() + """
+subsection Body block
+  include material.prm
+  subsection Material
+    set Young's modulus = 1000
+    set Young's modulus = 500
+    set Poisson's ratio = 0.3
+  end
+end
+subsection Boundary condition load
+  set Type     = pressure
+  set Function = 0
+end
+subsection Boundary condition bottom
+  set Type = fixed
+end
+""")
+    rows, log, _ = run(os.path.join(work, "twice.prm"), "Output/Write VTU=false", name="twice")
+    said = [line.strip() for line in log.splitlines() if "is set again" in line]
+    expected = ["'Body block/Material/Young's modulus' = '1000' (line 33 of '" + os.path.join(work, "twice.prm") +
+                "') is not used: it is set again, to '500', on line 34 of '" + os.path.join(work, "twice.prm") + "'",
+                "'Body block/Material/Poisson's ratio' = '0.25' (line 3 of '" + os.path.join(work, "material.prm") +
+                "') is not used: it is set again, to '0.3', on line 35",
+                "'Boundary condition load/Type' = 'traction' (line 26 of",
+                "'Boundary condition load/Function' = 't; -5*t' (line 27 of"]
+    for e in expected:
+        check(sum(e in line for line in said) == 1, f"one warning: {e!r}: {said}")
+    check(len(said) == 4, f"four warnings, one per entry (the last change of each): {said}")
+    check(abs(rows[-1]["reaction_bottom_y"]) < 1e-12, f"the last values hold: a pressure of 0: {rows[-1]['reaction_bottom_y']}")
+    shutil.rmtree(work, ignore_errors=True)
+
+
+def case_motion_contact_cannot_hold():
+    """R16.3: a body that only frictionless contact holds in a motion to
+    which every closed contact normal is perpendicular has no unique
+    solution in that motion; glide warns once, after the first converged
+    step (until 2026-12-06 in silence: the upper block's slip was whatever
+    the linear solver picked, 0.0739 on 1 process and 0.0739232 on 3).
+    tests/scenes/floating-block.prm: the upper block, free in x, pressed
+    flat onto the lower one: warned, naming the body and the motion. Held
+    in x by a symmetry condition on its left side: no warning. The shipped
+    scenes, whose round bodies contact holds, give none
+    (scene.shipped_scenes_run)."""
+    said = "warning: only contact holds body 'upper': its translation in x, and the normal of every closed contact node"
+    rows, log, _ = run(scene("floating-block.prm"), "Output/Write VTU=false", name="floating")
+    check(log.count(said) == 1, f"warned once: {[l for l in log.splitlines() if 'only contact holds' in l]}")
+    rows, log, _ = run(scene("floating-block.prm"), "Output/Write VTU=false", "Boundary conditions=bottom, press, hold",
+                       "Boundary condition hold/Surface=upper.left", "Boundary condition hold/Type=XSYMM", name="held")
+    check(len(rows) == 2 and "only contact holds" not in log, "held in x: converges, no warning")
+
+
+def case_finer_master_over_the_contact_area():
+    """R16.3: the warning about master facets shorter than the slave's
+    takes the median over the contact area, not over the closed nodes
+    (until 2026-12-06 a graded slave, whose many small facets lie where it
+    is finer than the master, hid the few large ones that carry much of
+    the force: the block slave of parameters/hertz-3d-elastic.prm with the
+    sphere refined twice and the block's top 4 times towards the contact,
+    force 20 % low against mortar and against the swapped roles, no
+    warning). That mesh warns, naming the ratio over the contact area
+    (at least 2); the shipped mesh, whose force is within the spread of
+    the formulations, does not (scene.shipped_scenes_run)."""
+    rows, log, _ = run(scene_file("hertz-3d-elastic.prm"), "Output/Write VTU=false",
+                       "Body sphere/Refinement/Global refinements=2", "Body block/Refinement/Local refinements=4",
+                       name="graded")
+    m = re.findall(r"the master's facets are ([0-9.]+) times shorter than the slave's \(median over the contact "
+                   r"area of [0-9]+ closed nodes\)", log)
+    check(len(m) == 1 and float(m[0]) >= 2., f"warned once, ratio >= 2 over the contact area: {m}")
+
+
+def case_every_n_steps():
+    """P5.1, 'Output/Every n steps': (1) the contact VTU files follow it as
+    the bodies' do, the contact CSV files are written every step (until
+    2026-12-06 the contact VTU of every step was written and listed);
+    rigid-punch.prm in 6 steps, every 3rd: contact VTU of steps 3 and 6,
+    CSV of all 6. (2) A run that fails writes the bodies' VTU of its last
+    converged step if 'Every n steps' left it out (until 2026-12-06 the
+    state to look at was missing): a neo-Hookean block squashed to nothing
+    in 4 steps, every 4th, fails after step 9 (cut-backs); its .pvd ends
+    with the last row of statistics.csv."""
+    _, _, out = run(scene_file("rigid-punch.prm"), "Load stepping/Number of steps=6", "Output/Every n steps=3",
+                    name="every3")
+    files = sorted(os.listdir(out))
+    vtu = [f for f in files if re.match(r"contact-punch-\d+\.vtu$", f)]
+    csv_files = [f for f in files if re.match(r"contact-punch-\d+\.csv$", f)]
+    check(vtu == ["contact-punch-0003.vtu", "contact-punch-0006.vtu"], f"contact VTU every 3rd step: {vtu}")
+    check(len(csv_files) == 6, f"contact CSV every step: {csv_files}")
+    pvd = open(os.path.join(out, "contact-punch.pvd")).read()
+    check(re.findall(r'file="([^"]+)"', pvd) == vtu, f"contact-punch.pvd lists them: {pvd[-300:]}")
+    rows, log, out = run(scene("block.prm"), "Discretization/Geometric nonlinearity=true",
+                         "Boundary condition load/Type=displacement", "Boundary condition load/Components=y",
+                         "Boundary condition load/Function=0; -1.0*t", "Load stepping/Number of steps=4",
+                         "Output/Every n steps=4", name="squashed", expect_status=2)
+    pvd = open(os.path.join(out, "squashed.pvd")).read()
+    last = re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', pvd)[-1]
+    check(abs(float(last[0]) - rows[-1]["load_factor"]) < 1e-12 and
+          last[1] == "squashed-%04d.vtu" % int(rows[-1]["step"]),
+          f"the last converged step {int(rows[-1]['step'])} (t = {rows[-1]['load_factor']}) is in the .pvd: {last}")
+    check(int(rows[-1]["step"]) % 4 != 0, "the case tests a step that 'Every n steps' leaves out")
+    check("the last that converged, is written for the diagnosis" in log, "the log says so")
+
+
 def case_output_directory_in_home():
     """P5.1: 'Output/Directory = ~/results' is taken as a shell takes it,
     under $HOME (until 2026-12-06 glide made a directory named '~' in the

@@ -472,9 +472,23 @@ namespace glide
     /// After a converged step: warn (once per pair) where the closed slave
     /// nodes of a node-to-surface pair with a compliant master touch master
     /// facets that are finer_master_ratio or more times shorter than their
-    /// own (doc/theory/node-to-surface.md, "Quadratic elements between two
-    /// deformable bodies": the master deforms under the slave nodes' point
-    /// forces, and the nodal pressure zigzags).
+    /// own, in the median over the contact area (doc/theory/node-to-surface.md,
+    /// "Quadratic elements between two deformable bodies": the master deforms
+    /// under the slave nodes' point forces, and the nodal pressure zigzags).
+    /// After a converged step (once per run): warn where a translation
+    /// of a body that only contact holds (Elasticity::free_motions()) is
+    /// perpendicular to the reference normal and to the force direction of
+    /// every closed slave node on it or against it: frictionless contact
+    /// transmits no force along it, so the solution is not unique in it
+    /// (two blocks stacked flat, the upper one free in x: its slip was
+    /// whatever the linear solver picked, and differed between 1 and 3
+    /// processes). @p closed: the closed slave nodes of each pair, with
+    /// their constraints' normals.
+    void
+    unheld_motions(
+      const std::vector<
+        std::vector<std::pair<unsigned int, dealii::Tensor<1, dim>>>> &closed);
+
     void
     finer_master_facets(Pair                               &pair,
                         const std::vector<Constraint<dim>> &s,
@@ -507,9 +521,14 @@ namespace glide
     VectorType               last_displacement;
     double                   time = 0.; ///< load factor
     std::vector<std::string> messages;
-    dealii::IndexSet         multipliers;
-    dealii::IndexSet         read_ghosts;
-    bool                     import_ghosts = false;
+    /// unheld_motions() has warned (or found no free translation).
+    bool unheld_said = false;
+    /// Elasticity::free_motions(), for unheld_motions().
+    std::vector<std::vector<typename Elasticity<dim>::FreeMotion>> free_motions;
+    bool             free_motions_found = false;
+    dealii::IndexSet multipliers;
+    dealii::IndexSet read_ghosts;
+    bool             import_ghosts = false;
     /// read_ghosts changed (follow()): view() sets up ghosted again.
     mutable bool ghosts_changed = false;
     /// follow() gathered since the last needs_new_pattern().

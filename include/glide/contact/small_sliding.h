@@ -8,6 +8,7 @@
 
 #include <array>
 #include <map>
+#include <string>
 #include <vector>
 
 namespace glide
@@ -168,6 +169,14 @@ namespace glide
       return normals;
     }
 
+    /// Empty, or which user normal (R8.1) points into the master (the
+    /// caller reports it as an input error, on every process).
+    const std::string &
+    inward_user_normal() const
+    {
+      return inward;
+    }
+
     /// The smooth normal field N(xi) on facet @p facet (R7.2).
     dealii::Tensor<1, dim>
     normal_field(const unsigned int facet, const Xi &xi) const;
@@ -285,6 +294,7 @@ namespace glide
     const MasterSurface<dim>              &surface;
     const bool                             infinitesimal;
     std::vector<dealii::Tensor<1, dim>>    normals;
+    std::string                            inward; ///< inward_user_normal()
     std::vector<std::vector<unsigned int>> node_facets;
     using Leaf = std::pair<dealii::BoundingBox<dim>, unsigned int>;
     dealii::RTree<Leaf> tree; ///< facets, initial configuration

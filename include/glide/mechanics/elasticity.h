@@ -235,7 +235,7 @@ namespace glide
       /// 0.5)".
       std::string text;
       /// A rotation (not a translation): about `axis` (unit; z in 2D)
-      /// through `point`.
+      /// through `point`. A translation: along `axis` (unit).
       bool                 rotation = false;
       dealii::Point<dim>   point;
       dealii::Tensor<1, 3> axis;
@@ -385,6 +385,7 @@ namespace glide
 
     struct PointForce
     {
+      std::string                                  path; ///< of the condition
       std::unique_ptr<dealii::FunctionParser<dim>> function;
       /// Vertex DoFs (locally owned) per component, with their positions.
       std::vector<std::pair<std::array<dealii::types::global_dof_index, dim>,

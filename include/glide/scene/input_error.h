@@ -12,11 +12,22 @@ namespace glide
    * or parameter path, says what is wrong and how to fix it. `main` prints it
    * once and exits with status 1; nothing is written before input is checked.
    */
+  /**
+   * @p message as it can be printed: control characters other than line
+   * breaks and tabs shown as \xNN (a NUL byte read from a mesh file ended
+   * the message there, and the newline after it was lost), and a message
+   * longer than 4000 characters shortened in the middle, where the value
+   * it quotes is (an 8 MB 'Function' was echoed whole), keeping its head
+   * and the advice at its end.
+   */
+  std::string
+  printable_message(const std::string &message);
+
   class InputError : public std::runtime_error
   {
   public:
     explicit InputError(const std::string &message)
-      : std::runtime_error(message)
+      : std::runtime_error(printable_message(message))
     {}
   };
 
