@@ -222,13 +222,19 @@ namespace glide
         tolerance_factor = strain / small_strain;
         newton_parameters.tolerance *= tolerance_factor;
         newton_parameters.step_tolerance *= tolerance_factor;
-        newton_parameters.round_off_floor =
-          std::max(elasticity.round_off_floor() * tolerance_factor,
-                   contact.round_off_floor());
+        // The linear law's round-off falls with the strain; the
+        // neo-Hookean law's does not (it forms F = I + H and its inverse,
+        // which keep about 16 digits of I, not of H): there the floor
+        // stays, and a step at the round-off of I is accepted at it.
+        if (!scene.geometric_nonlinearity)
+          newton_parameters.round_off_floor =
+            std::max(elasticity.round_off_floor() * tolerance_factor,
+                     contact.round_off_floor());
       }
     newton_parameters.linear_problem =
       !contact.active() && !scene.geometric_nonlinearity;
-    newton = std::make_unique<NonlinearSolver>(newton_parameters, comm);
+    newton_floor = newton_parameters.round_off_floor;
+    newton       = std::make_unique<NonlinearSolver>(newton_parameters, comm);
     NonlinearSolverParameters damped_parameters = newton_parameters;
     damped_parameters.strategy                  = "line search";
     damped = std::make_unique<NonlinearSolver>(damped_parameters, comm);
@@ -839,16 +845,25 @@ namespace glide
                   {
                     t = stepper.time();
                     contact.set_time(t);
-                    {
-                      TimerOutput::Scope s(timer, "output");
-                      write_bodies(stepper.steps());
-                      output->commit_step([&]() { vtu->write_pvd(); });
-                    }
-                    pcout << "  the bodies' VTU of step " << stepper.steps()
-                          << " (load factor " << t
-                          << "), the last that converged, is written for "
-                             "the diagnosis"
-                          << std::endl;
+                    follow(U); // the failed attempts moved the search
+                    try
+                      {
+                        TimerOutput::Scope s(timer, "output");
+                        write_bodies(stepper.steps());
+                        output->commit_step([&]() { vtu->write_pvd(); });
+                        pcout << "  the bodies' VTU of step " << stepper.steps()
+                              << " (load factor " << t
+                              << "), the last that converged, is written "
+                                 "for the diagnosis"
+                              << std::endl;
+                      }
+                    catch (const OutputError &e)
+                      {
+                        // The step's failure is what the run reports.
+                        pcout << "  the VTU of the last converged step "
+                                 "could not be written: "
+                              << e.what() << std::endl;
+                      }
                   }
                 throw;
               }
@@ -870,8 +885,8 @@ namespace glide
                                             "")
                 << ": KINSOL could not reduce the residual further, and "
                 << scientific(result.residual_norm)
-                << " is within the round-off floor "
-                << scientific(round_off_floor()) << " that "
+                << " is within the round-off floor " << scientific(newton_floor)
+                << " that "
                 << (round_off_floor() > elasticity.round_off_floor() ?
                       "the contact gaps set (10 x machine epsilon x the "
                       "largest slave coordinate, over the slave facet "

@@ -89,7 +89,7 @@ glide_error_test(node_set_point_syntax "Node set left/Points' = '0, 5, x': canno
 # Abaqus second-order, part/instance and 3D files with balanced reactions;
 # a node set of points separated by ';'.
 foreach(case abaqus_two_bodies_contact gmsh_and_abaqus_bodies_balance node_set_points element_types_against_the_analysis duplicate_nodes_warned
-             mixed_node_set_and_surface z_round_off_in_2d mixed_orientation)
+             mixed_node_set_and_surface z_round_off_in_2d)
   add_test(NAME scene.mesh_import_${case}
     COMMAND ${GLIDE_PYTHON} ${SCENES}/mesh_import_tests.py --glide $<TARGET_FILE:glide> --case ${case})
 endforeach()
@@ -128,6 +128,10 @@ glide_error_test(mesh.axisymmetric_negative_radius "Body 'part': in an axisymmet
 # as empty, in silence: one element of two).
 glide_mesh_error_test(abaqus_element_input bad_element_input.inp "12: \\*ELEMENT, INPUT=... is not read by glide; put the data lines into the file, or \\*INCLUDE")
 glide_mesh_error_test(abaqus_include_directory bad_include_directory.inp "9: the file included by \\*INCLUDE, '/' is a directory%3B give the path of an Abaqus .inp file")
+# Cells numbered both ways round: refused with what to do in Gmsh (until
+# 2026-12-06 deal.II's internal text reached the user; one cell numbered
+# against the others cannot be told from one folded over its neighbours).
+glide_error_test(mesh.gmsh_mixed_orientation "Mesh file '[^']*mixed_orientation.msh': some of its cells are numbered clockwise and some counterclockwise .*'Reverse Surface'" ${ONE_BODY} --set "Body part/Mesh file=${MESH_DATA}/mixed_orientation.msh")
 glide_mesh_error_test(abaqus_include_loop bad_include_loop.inp "9: \\*INCLUDE of '[^']*bad_include_loop.inp' makes a loop: '[^']*bad_include_loop.inp' -> '[^']*bad_include_loop.inp'")
 glide_mesh_error_test(abaqus_instance_axis_points_coincide bad_instance_axis.inp "32: the rotation of an instance turns about the axis through its first two points, but they coincide" ${IN_3D} --set "Body part/Part=Upper")
 # A NUL byte in a number: the message shows it as \x00 and goes on to its

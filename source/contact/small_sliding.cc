@@ -173,7 +173,7 @@ namespace glide
     // 2026-12-06).
     for (const auto &[k, n] : user_normals)
       {
-        if (inward.empty() && n * normals[k] <= 0.)
+        if (inward.empty() && n * normals[k] < 0.)
           {
             std::ostringstream text;
             text << "the normal (" << n << ") given at the master node ("

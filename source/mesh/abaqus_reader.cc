@@ -88,8 +88,14 @@ namespace glide
          std::vector<Line>        &lines,
          std::vector<std::string> &chain)
     {
-      std::error_code ec;
-      chain.push_back(std::filesystem::weakly_canonical(file, ec).string());
+      // The path as written where it cannot be made canonical (an empty
+      // one would make unrelated files look alike).
+      const auto canonical_of = [](const std::string &f) {
+        std::error_code ec;
+        const auto      c = std::filesystem::weakly_canonical(f, ec);
+        return ec || c.empty() ? f : c.string();
+      };
+      chain.push_back(canonical_of(file));
       const int     depth = static_cast<int>(chain.size()) - 1;
       std::ifstream in(file);
       require(static_cast<bool>(in),
@@ -121,8 +127,7 @@ namespace glide
                                    file_line(file, number) +
                                      ": the file included by *INCLUDE,",
                                    "give the path of an Abaqus .inp file.");
-              const std::string canonical =
-                std::filesystem::weakly_canonical(name, ec).string();
+              const std::string canonical = canonical_of(name);
               if (std::find(chain.begin(), chain.end(), canonical) !=
                   chain.end())
                 {

@@ -258,7 +258,12 @@ namespace glide
                                   [d](const auto &a, const auto &b) {
                                     return a[d] < b[d];
                                   });
-            extent = std::max(extent, (*high)[d] - (*low)[d]);
+            // Round-off scales with the coordinates too (a small part far
+            // from the origin).
+            extent = std::max({extent,
+                               (*high)[d] - (*low)[d],
+                               std::abs((*high)[d]),
+                               std::abs((*low)[d])});
           }
         for (const auto &[n, v] : vertex_of)
           {
@@ -269,7 +274,7 @@ namespace glide
                     file_line(content.file, content.nodes.at(n).line) +
                       ": node " + std::to_string(n) + " has z = " + z.str() +
                       ", but the scene is 2D (x, y); a 2D mesh lies in the "
-                      "plane z = 0 (to 1e-10 of its extent).");
+                      "plane z = 0 (to 1e-10 of its coordinates).");
             x[2] = 0.;
           }
       }
@@ -719,14 +724,25 @@ namespace glide
         // Gmsh cells numbered clockwise are renumbered (Abaqus ones were
         // refused in import_body()); then the orientation of shared faces
         // is made consistent, as deal.II's GridIn does.
-        // Cell by cell: deal.II's function refuses a mesh whose cells go
-        // both ways (until 2026-12-06 its text reached the user).
-        for (auto &cell : cells)
+        // All cells one way or all the other: a cell numbered against
+        // the others cannot be told from one folded over its neighbours.
+        bool positive = false, negative = false;
+        for (const auto &cell : cells)
           {
             std::vector<CellData<dim>> one{cell};
             GridTools::invert_all_negative_measure_cells(vertices, one);
-            cell = one.front();
+            (one.front().vertices == cell.vertices ? positive : negative) =
+              true;
           }
+        require(!(positive && negative),
+                "Mesh file '" + mesh.file +
+                  "': some of its cells are numbered clockwise and some "
+                  "counterclockwise (or a cell is folded over its "
+                  "neighbours); glide reads a mesh whose cells all go one "
+                  "way round. In Gmsh, give all surfaces the same "
+                  "orientation (e.g. 'Reverse Surface' on the others) and "
+                  "mesh again.");
+        GridTools::invert_all_negative_measure_cells(vertices, cells);
         GridTools::consistently_order_cells(cells);
         tria.create_triangulation(vertices, cells, subcell);
       }

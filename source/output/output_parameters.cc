@@ -32,9 +32,9 @@ namespace glide
                       Patterns::Integer(1),
                       "Write the bodies' and the contact pairs' VTU files "
                       "every n-th converged load step (the last step is "
-                      "always written, and so is the last converged step of "
-                      "a run that fails); the statistics and the contact "
-                      "CSV files get every step.");
+                      "always written; a run that fails writes the bodies' "
+                      "VTU of its last converged step); the statistics and "
+                      "the contact CSV files get every step.");
     prm.leave_subsection();
   }
 

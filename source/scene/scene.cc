@@ -76,16 +76,19 @@ namespace glide
       for (unsigned int n = 0; std::getline(in, line); ++n)
         {
           const unsigned int first = n;
-          // A line continued with a backslash (deal.II joins them).
+          // A line continued with a backslash (deal.II trims each line,
+          // then joins it to the next).
+          line = Utilities::trim(line);
           while (!line.empty() && line.back() == '\\')
             {
               std::string next;
               if (!std::getline(in, next))
                 break;
               line.pop_back();
-              line += next;
+              line += Utilities::trim(next);
               ++n;
             }
+          std::replace(line.begin(), line.end(), '\t', ' ');
           if (const auto hash = line.find('#'); hash != std::string::npos)
             line.erase(hash);
           line = Utilities::trim(line);
@@ -110,7 +113,16 @@ namespace glide
                 seen.emplace(path, std::make_pair(value, first));
               if (inserted)
                 continue;
-              if (it->second.first != value)
+              const auto squeezed = [](std::string v) {
+                v.erase(std::remove_if(v.begin(),
+                                       v.end(),
+                                       [](const unsigned char c) {
+                                         return std::isspace(c);
+                                       }),
+                        v.end());
+                return v;
+              };
+              if (squeezed(it->second.first) != squeezed(value))
                 {
                   if (!twice.count(path))
                     order.push_back(path);

@@ -81,13 +81,13 @@ namespace glide
                 "Minimum refinement radius"},
                "'Local refinements' is 0; set it to the number of levels "
                "to refine towards the point.");
-        if (manufactured_solution != "none")
+        if (manufactured_solution != "none" && !body.rigid)
           note({b},
                {"Body force"},
                "'Verification/Manufactured solution = " +
                  manufactured_solution +
                  "' sets the body force from the exact solution.");
-        else if (body.rigid)
+        if (body.rigid)
           note({b},
                {"Body force"},
                "a meshed rigid body ('Rigid body/Rigid = true') follows "

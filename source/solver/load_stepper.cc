@@ -48,11 +48,12 @@ namespace glide
     if (n_step_cut_backs >= parameters.maximum_cut_backs)
       throw std::runtime_error(
         step + " failed after " + std::to_string(n_step_cut_backs) +
-        " cut-backs: " + reason +
-        "; the log above says why each attempt failed. If its residuals "
-        "were still falling, raise 'Nonlinear solver/Maximum iterations'; "
-        "otherwise take smaller steps ('Load stepping/Number of steps') or "
-        "allow more cut-backs ('Load stepping/Maximum cut-backs')");
+        " cut-backs (the log above says why each attempt failed; if its "
+        "residuals were still falling, raise 'Nonlinear solver/Maximum "
+        "iterations', otherwise take smaller steps, 'Load stepping/Number "
+        "of steps', or allow more cut-backs, 'Load stepping/Maximum "
+        "cut-backs'): " +
+        reason);
     // The floor, with a margin for the rounding of repeated halving.
     if (dt <= dt_min * (1. + 1e-9))
       {

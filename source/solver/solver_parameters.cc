@@ -36,7 +36,8 @@ namespace glide
                       "prescribed displacements strain the bodies by less "
                       "than 1e-6, the tolerance is multiplied by that "
                       "strain / 1e-6, so that the residual left is at most "
-                      "1e6 x this of the largest load (the log says so).");
+                      "1e6 x this of the largest load (the log says so; not "
+                      "where an analytical rigid master moves).");
     prm.declare_entry("Maximum iterations",
                       "25",
                       Patterns::Integer(1, 1000),

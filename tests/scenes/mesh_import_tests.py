@@ -113,19 +113,6 @@ def case_z_round_off_in_2d():
     close(rows[-1]["reaction_hold_y"], 2., 1e-9, "z = 1e-14 read as 0: the support carries the traction")
 
 
-def case_mixed_orientation():
-    """P1.3: a Gmsh mesh whose cells go both ways round (one clockwise, one
-    counterclockwise) is read, each clockwise cell renumbered (until
-    2026-12-06 deal.II's internal text about negative volumes reached the
-    user, exit 1). mixed_orientation.msh: two quadrilaterals on [0, 2] x
-    [0, 1], held on 'bottom', traction (0, -1) on 'top' (length 2): R_y = 2."""
-    rows, _, _ = one_body("mixed_orientation.msh", "Boundary conditions=hold, load",
-                          "Boundary condition hold/Surface=part.bottom", "Boundary condition load/Surface=part.top",
-                          "Boundary condition load/Type=traction", "Boundary condition load/Function=0; -t",
-                          name="mixed")
-    close(rows[-1]["reaction_hold_y"], 2., 1e-9, "mixed orientation: the support carries the traction")
-
-
 def case_element_types_against_the_analysis():
     """Abaqus 2D element types say what the analysis is (CAX: axisymmetric,
     CPE: plane strain, CPS: plane stress); glide takes it from the scene's

@@ -2034,7 +2034,7 @@ def case_small_loads():
     sag and exit 0; so did a traction of 5 on E = 1e14). The block of
     tests/scenes/block.prm is linear, so its reactions scale with the load:
     with E = 1e14 the bottom reaction balances the traction (-2, 10) to
-    1e-8; a prescribed displacement of 1e-12 gives 1e-9 of the reaction of
+    1e-8 (x) and 1e-8 relative (y); a prescribed displacement of 1e-12 gives 1e-9 of the reaction of
     1e-3, to 1e-8; the log says the tolerance was taken relative to the
     loads. A traction at ordinary strains keeps its tolerance (no note)."""
     rows, log, _ = run(scene("block.prm"), "Body block/Material/Young's modulus=1e14", "Output/Write VTU=false",
@@ -2046,12 +2046,23 @@ def case_small_loads():
     moved = []
     for d in ("1e-3", "1e-12"):
         rows, log, _ = run(scene("block.prm"), "Boundary condition load/Type=displacement",
-                           f"Boundary condition load/Function=0; -{d}*t", "Output/Write VTU=false", name="moved")
+                           f"Boundary condition load/Function=0; -{d}*t", "Output/Write VTU=false",
+                           "Load stepping/Predictor=none", name="moved")
+        check(rows[-1]["kinsol_iterations"] >= 1, f"displacement {d}: at least one Newton iteration")
         moved.append(rows[-1]["reaction_bottom_y"])
         check(("is taken relative to that" in log) == (d == "1e-12"), f"displacement {d}: note only when tiny")
     check(abs(moved[1] / moved[0] - 1e-9) < 1e-17, f"reaction scales with the displacement: {moved}")
     _, log, _ = run(scene("block.prm"), "Output/Write VTU=false", name="ordinary")
     check("is taken relative" not in log, "ordinary loads: the tolerance as given")
+    # Geometrically nonlinear (neo-Hookean: its round-off is that of
+    # F = I + H, about machine epsilon / strain = 2.2e-16 / 5e-14 = 4.4e-3
+    # relative here, not that of H): solved too (R = 0 before), the
+    # reactions to twice that round-off.
+    rows, log, _ = run(scene("block.prm"), "Body block/Material/Young's modulus=1e14",
+                       "Discretization/Geometric nonlinearity=true", "Output/Write VTU=false", name="stiff_nonlinear")
+    check(abs(rows[-1]["reaction_bottom_x"] + 2.) < 2 * 4.4e-3 * 2 and
+          abs(rows[-1]["reaction_bottom_y"] - 10.) < 2 * 4.4e-3 * 10,
+          f"neo-Hookean, E = 1e14: R = (-2, 10): ({rows[-1]['reaction_bottom_x']}, {rows[-1]['reaction_bottom_y']})")
 
 
 def case_entries_set_twice():

@@ -72,12 +72,12 @@ TEST(LoadStepper, TooManyCutBacksInOneStepEndTheRun)
     {
       // The reason, then what to change (until 2026-12-06 no advice).
       EXPECT_EQ(std::string(e.what()),
-                "load step 1 failed after 2 cut-backs: no convergence; the "
-                "log above says why each attempt failed. If its residuals "
-                "were still falling, raise 'Nonlinear solver/Maximum "
-                "iterations'; otherwise take smaller steps ('Load "
-                "stepping/Number of steps') or allow more cut-backs ('Load "
-                "stepping/Maximum cut-backs')");
+                "load step 1 failed after 2 cut-backs (the log above says "
+                "why each attempt failed; if its residuals were still "
+                "falling, raise 'Nonlinear solver/Maximum iterations', "
+                "otherwise take smaller steps, 'Load stepping/Number of "
+                "steps', or allow more cut-backs, 'Load stepping/Maximum "
+                "cut-backs'): no convergence");
     }
 }
 
