@@ -1,7 +1,10 @@
 #include <glide/scene/input_error.h>
+#include <glide/scene/text.h>
 
 #include <deal.II/base/utilities.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 
@@ -33,6 +36,18 @@ namespace glide
             std::to_string(out.size() - head - tail) +
             " characters left out ...] " + out.substr(out.size() - tail);
     return out;
+  }
+
+  std::string
+  without_white_space(std::string text)
+  {
+    text.erase(std::remove_if(text.begin(),
+                              text.end(),
+                              [](const unsigned char c) {
+                                return std::isspace(c);
+                              }),
+               text.end());
+    return text;
   }
 
   std::vector<double>

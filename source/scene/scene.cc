@@ -1,6 +1,7 @@
 #include <glide/mechanics/rotation.h>
 #include <glide/scene/input_error.h>
 #include <glide/scene/scene.h>
+#include <glide/scene/text.h>
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
@@ -113,16 +114,8 @@ namespace glide
                 seen.emplace(path, std::make_pair(value, first));
               if (inserted)
                 continue;
-              const auto squeezed = [](std::string v) {
-                v.erase(std::remove_if(v.begin(),
-                                       v.end(),
-                                       [](const unsigned char c) {
-                                         return std::isspace(c);
-                                       }),
-                        v.end());
-                return v;
-              };
-              if (squeezed(it->second.first) != squeezed(value))
+              if (without_white_space(it->second.first) !=
+                  without_white_space(value))
                 {
                   if (!twice.count(path))
                     order.push_back(path);

@@ -1,4 +1,5 @@
 #include <glide/scene/scene.h>
+#include <glide/scene/text.h>
 
 #include <deal.II/base/utilities.h>
 
@@ -8,23 +9,6 @@
 namespace glide
 {
   using namespace dealii;
-
-  namespace
-  {
-    /// The value without white space, so that '0,0' and '0, 0' compare
-    /// equal.
-    std::string
-    squeezed(std::string s)
-    {
-      s.erase(std::remove_if(s.begin(),
-                             s.end(),
-                             [](const unsigned char c) {
-                               return std::isspace(c);
-                             }),
-              s.end());
-      return s;
-    }
-  } // namespace
 
   std::vector<std::string>
   Scene::unused_entries(const ParameterHandler &prm,
@@ -40,7 +24,8 @@ namespace glide
       for (const auto &entry : entries)
         {
           const std::string value = prm.get(path, entry);
-          if (squeezed(value) == squeezed(defaults.get(path, entry)))
+          if (without_white_space(value) ==
+              without_white_space(defaults.get(path, entry)))
             continue;
           std::string name;
           for (const auto &s : path)

@@ -221,8 +221,11 @@ def case_cut_back():
     check("step failed: no convergence in 4 Newton iterations" in log, "log says why the step failed")
     check("cutting back" in log, "log says it cuts back")
     _, log, _ = run(scene("block.prm"), *sets, "Load stepping/Maximum cut-backs=0", expect_status=2)
-    check(re.search(r"load step 1 failed after 0 cut-backs: no convergence", log) is not None,
-          "failure names the step and the reason")
+    check(re.search(r"load step 1 failed after 0 cut-backs \(the log above says why each attempt failed; if its "
+                    r"residuals were still falling, raise 'Nonlinear solver/Maximum iterations', otherwise take "
+                    r"smaller steps, 'Load stepping/Number of steps', or allow more cut-backs, 'Load "
+                    r"stepping/Maximum cut-backs'\): no convergence", log) is not None,
+          "failure names the step, what to change and the reason")
 
 
 def case_tangent_predictor():
