@@ -100,7 +100,11 @@ glide_bad_input(cli.set_without_equals --expect "--set 'abc' is not of the form.
 glide_bad_input(cli.set_empty_path --expect "--set '=3': the path '' has an empty part" -- ${BLOCK} --set "=3")
 glide_bad_input(cli.set_empty_part --expect "--set 'Body block//Mesh=block'.*empty part" -- ${BLOCK} --set "Body block//Mesh=block")
 glide_bad_input(cli.set_trailing_slash --expect "--set 'Body block/=3'.*empty part" -- ${BLOCK} --set "Body block/=3")
-glide_bad_input(cli.set_unknown_section --expect "--set 'Nowhere/Entry=1'.*print-parameters" -- ${BLOCK} --set "Nowhere/Entry=1")
+glide_bad_input(cli.set_unknown_section --expect "--set 'Nowhere/Entry=1': the scene has no subsection 'Nowhere'\\. Run 'glide --print-parameters'" -- ${BLOCK} --set "Nowhere/Entry=1")
+# A misspelt body or entry on the command line: the name it was meant to be
+# (deal.II's "You can't ask for entry ... you have not yet declared" before).
+glide_bad_input(cli.set_misspelt_body --expect "--set 'Body blok/Material/Young's modulus=2': the scene has no subsection 'Body blok'\\. Did you mean 'Body block'\\?" -- ${BLOCK} --set "Body blok/Material/Young's modulus=2")
+glide_bad_input(cli.set_misspelt_entry --expect "--set 'Body block/Material/Youngs modulus=2': there is no entry 'Youngs modulus' in subsection 'Body block/Material'\\. Did you mean 'Young's modulus'\\?" -- ${BLOCK} --set "Body block/Material/Youngs modulus=2")
 glide_bad_input(cli.set_missing_argument --expect "--set needs an argument" -- ${BLOCK} --set)
 glide_bad_input(cli.print_parameters_format --expect "--print-parameters takes prm, json or xml, not 'yaml'" -- --print-parameters yaml)
 glide_bad_input(cli.print_parameters_full_stdout --stdout full --status 4 --expect "input/output error: Cannot write the parameters to standard output" -- --print-parameters)

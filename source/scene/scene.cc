@@ -1,5 +1,6 @@
 #include <glide/mechanics/rotation.h>
 #include <glide/scene/input_error.h>
+#include <glide/scene/parameter_hint.h>
 #include <glide/scene/scene.h>
 #include <glide/scene/text.h>
 
@@ -213,6 +214,56 @@ namespace glide
                   "or be 0).";
         }
       return text;
+    }
+
+    /// The hint of parameter_hint() for a name deal.II's parser did not
+    /// know, read from the line of the expanded .prm @p text that its
+    /// message names; "" for other mistakes and for JSON and XML scenes.
+    std::string
+    hint_at_line(const std::function<void(ParameterHandler &)> &declare,
+                 const ExceptionBase                           &e,
+                 const std::string                             &text)
+    {
+      std::ostringstream s;
+      e.print_info(s);
+      const std::string message = s.str();
+      const auto        at      = message.find("Line <");
+      if (text.empty() || at == std::string::npos)
+        return "";
+      unsigned long number = 0;
+      try
+        {
+          number = std::stoul(message.substr(at + 6));
+        }
+      catch (const std::exception &)
+        {
+          return "";
+        }
+      std::istringstream in(text);
+      std::string        line;
+      unsigned long      read = 0;
+      while (read < number && std::getline(in, line))
+        ++read;
+      if (number == 0 || read < number)
+        return "";
+      if (const auto hash = line.find('#'); hash != std::string::npos)
+        line.erase(hash);
+      line                  = Utilities::trim(line);
+      const auto       path = subsection_path_at(text, number);
+      ParameterHandler prm;
+      declare(prm);
+      if (line.rfind("set ", 0) == 0 && line.find('=') != std::string::npos)
+        return parameter_hint(prm,
+                              path,
+                              Utilities::trim(
+                                line.substr(4, line.find('=') - 4)),
+                              false);
+      if (line.rfind("subsection ", 0) == 0)
+        return parameter_hint(prm,
+                              path,
+                              Utilities::trim(line.substr(11)),
+                              true);
+      return "";
     }
 
     /// The format of a scene file as deal.II's ParameterHandler decides it:
@@ -1324,64 +1375,97 @@ namespace glide
     if (const auto d = stem.rfind('.'); d != std::string::npos)
       stem = stem.substr(0, d);
 
-    auto apply_overrides = [&](ParameterHandler &prm, const bool lenient) {
-      for (const auto &o : overrides)
-        {
-          const auto eq = o.find('=');
-          require(eq != std::string::npos,
-                  "Command-line option --set '" + o +
-                    "' is not of the form \"Subsection/Entry=value\" (it "
-                    "has no '='). Example: --set \"Body block/Material/"
-                    "Young's modulus=210e3\".");
-          // Every part of the path must name something: no empty entry,
-          // no empty subsection ('a//b', '/a', 'a/').
-          std::vector<std::string> path;
+    // @p declare declares the parameters afresh for the hints of a
+    // mistake (entering a subsection that does not exist creates it).
+    auto apply_overrides =
+      [&](ParameterHandler                              &prm,
+          const bool                                     lenient,
+          const std::function<void(ParameterHandler &)> &declare) {
+        for (const auto &o : overrides)
           {
-            std::string rest = o.substr(0, eq) + "/";
-            for (auto slash = rest.find('/'); slash != std::string::npos;
-                 slash      = rest.find('/'))
-              {
-                     path.push_back(Utilities::trim(rest.substr(0, slash)));
-                     rest = rest.substr(slash + 1);
-              }
-          }
-          for (const auto &part : path)
-            require(!part.empty(),
-                    "Command-line option --set '" + o + "': the path '" +
-                      o.substr(0, eq) +
-                      "' has an empty part; write \"Subsection/Entry=value\" "
-                      "with the names that 'glide --print-parameters' "
-                      "shows.");
-          const auto value = Utilities::trim(o.substr(eq + 1));
-          try
+            const auto eq = o.find('=');
+            require(eq != std::string::npos,
+                    "Command-line option --set '" + o +
+                      "' is not of the form \"Subsection/Entry=value\" (it "
+                      "has no '='). Example: --set \"Body block/Material/"
+                      "Young's modulus=210e3\".");
+            // Every part of the path must name something: no empty entry,
+            // no empty subsection ('a//b', '/a', 'a/').
+            std::vector<std::string> path;
             {
-              for (unsigned int i = 0; i + 1 < path.size(); ++i)
-                prm.enter_subsection(path[i]);
-              prm.set(path.back(), value);
-              for (unsigned int i = 0; i + 1 < path.size(); ++i)
-                prm.leave_subsection();
-            }
-          catch (const ExceptionBase &e)
-            {
-              if (lenient)
+              std::string rest = o.substr(0, eq) + "/";
+              for (auto slash = rest.find('/'); slash != std::string::npos;
+                   slash      = rest.find('/'))
                 {
-                  // Names declared only in the second pass.
-                  for (unsigned int i = 0; i + 1 < path.size(); ++i)
-                    try
-                      {
-                        prm.leave_subsection();
-                      }
-                    catch (...)
-                      {}
-                  continue;
+                       path.push_back(Utilities::trim(rest.substr(0, slash)));
+                       rest = rest.substr(slash + 1);
                 }
-              throw InputError("Command-line option --set '" + o +
-                               "': " + explain(e) +
-                               " Run 'glide --print-parameters' to see "
-                               "every valid parameter.");
             }
-        }
-    };
+            for (const auto &part : path)
+              require(!part.empty(),
+                      "Command-line option --set '" + o + "': the path '" +
+                        o.substr(0, eq) +
+                        "' has an empty part; write \"Subsection/Entry=value\" "
+                        "with the names that 'glide --print-parameters' "
+                        "shows.");
+            const auto   value   = Utilities::trim(o.substr(eq + 1));
+            unsigned int entered = 0;
+            try
+              {
+                for (; entered + 1 < path.size(); ++entered)
+                  prm.enter_subsection(path[entered]);
+                prm.set(path.back(), value);
+              }
+            catch (const ExceptionBase &e)
+              {
+                for (; entered > 0; --entered)
+                  prm.leave_subsection();
+                // Names declared only in the second pass.
+                if (lenient)
+                  continue;
+                const std::vector<std::string> subsections(path.begin(),
+                                                           path.end() - 1);
+                const auto joined = [](const std::vector<std::string> &p) {
+                  std::string j;
+                  for (const auto &n : p)
+                    j += (j.empty() ? "" : "/") + n;
+                  return j;
+                };
+                ParameterHandler declared;
+                declare(declared);
+                unsigned int found = 0;
+                std::string  what;
+                if (!is_declared_subsection(declared, subsections, found))
+                  {
+                    std::string known;
+                    for (unsigned int i = 0; i <= found; ++i)
+                      known += (i ? "/" : "") + path[i];
+                    what = "the scene has no subsection '" + known + "'." +
+                           parameter_hint(declared,
+                                          {path.begin(), path.begin() + found},
+                                          path[found],
+                                          true);
+                  }
+                else if (explain(e).find("not yet declared") !=
+                         std::string::npos)
+                  what =
+                    "there is no entry '" + path.back() + "' in " +
+                    (subsections.empty() ?
+                       std::string("the top level") :
+                       "subsection '" + joined(subsections) + "'") +
+                    "." +
+                    parameter_hint(declared, subsections, path.back(), false);
+                else
+                  what = explain(e);
+                throw InputError("Command-line option --set '" + o +
+                                 "': " + what +
+                                 " Run 'glide --print-parameters' to see "
+                                 "every valid parameter.");
+              }
+            for (; entered > 0; --entered)
+              prm.leave_subsection();
+          }
+      };
 
     // A .prm file is parsed from its text with its 'include' statements
     // expanded (expand_includes()) and without a UTF-8 byte-order mark at
@@ -1423,7 +1507,7 @@ namespace glide
         ParameterHandler prm;
         declare_parameters(prm, {}, {}, {}, {});
         parse(prm, true);
-        apply_overrides(prm, true);
+        apply_overrides(prm, true, [](ParameterHandler &) {});
         bodies     = split_names(prm.get("Bodies"));
         conditions = split_names(prm.get("Boundary conditions"));
         node_sets  = split_names(prm.get("Node sets"));
@@ -1452,8 +1536,12 @@ namespace glide
             "Scene '" + filename + "': 'Bodies' must name at least one body.");
 
     // Pass 2: strict, with one subsection per name.
+    const std::function<void(ParameterHandler &)> declare =
+      [&](ParameterHandler &fresh) {
+        declare_parameters(fresh, bodies, conditions, node_sets, pairs);
+      };
     ParameterHandler prm;
-    declare_parameters(prm, bodies, conditions, node_sets, pairs);
+    declare(prm);
     try
       {
         parse(prm, false);
@@ -1501,10 +1589,11 @@ namespace glide
                 }
           }
         throw InputError("In scene file '" + filename + "': " + message +
+                         hint_at_line(declare, e, text) +
                          " Run 'glide --print-parameters' to see every "
                          "valid parameter.");
       }
-    apply_overrides(prm, false);
+    apply_overrides(prm, false, declare);
 
     for (const auto &b : bodies)
       {

@@ -3,6 +3,7 @@
 // names the file and the parameter and says what to do. (The program-level
 // tests in tests/scenes check the exit status and that nothing is written.)
 #include <glide/scene/input_error.h>
+#include <glide/scene/parameter_hint.h>
 #include <glide/scene/scene.h>
 
 #include "test_helpers.h"
@@ -207,4 +208,62 @@ TEST(Scene, PrintParametersDocumentsEverything)
                             "Maximum cut-backs",
                             "Direct solver"})
     EXPECT_NE(out.str().find(entry), std::string::npos) << entry;
+}
+
+// P4.1: a name the scene does not declare gets the declared name it was
+// probably meant to be, and none where no name is close.
+TEST(ParameterHint, ClosestNameOrNone)
+{
+  dealii::ParameterHandler prm;
+  prm.declare_entry("Dimension", "2");
+  prm.enter_subsection("Body block");
+  prm.declare_entry("Mesh", "block");
+  prm.enter_subsection("Material");
+  prm.declare_entry("Young's modulus", "1");
+  prm.declare_entry("Poisson's ratio", "0.3");
+  prm.leave_subsection();
+  prm.leave_subsection();
+
+  const std::vector<std::string> material{"Body block", "Material"};
+  // Two mistakes in a long name, case ignored.
+  EXPECT_EQ(parameter_hint(prm, material, "youngs modulus", false),
+            " Did you mean 'Young's modulus'?");
+  EXPECT_EQ(parameter_hint(prm, material, "Poissons ration", false),
+            " Did you mean 'Poisson's ratio'?");
+  // Three mistakes: no guess.
+  EXPECT_EQ(parameter_hint(prm, material, "Yongs modulos", false), "");
+  // Letters swapped count once; in a short name only one mistake.
+  EXPECT_EQ(parameter_hint(prm, {"Body block"}, "Msh", false),
+            " Did you mean 'Mesh'?");
+  EXPECT_EQ(parameter_hint(prm, {"Body block"}, "Mxs", false), "");
+  EXPECT_EQ(parameter_hint(prm, {"Body block"}, "Materail", true),
+            " Did you mean 'Material'?");
+  EXPECT_EQ(parameter_hint(prm, {}, "Body blok", true),
+            " Did you mean 'Body block'?");
+  // An entry of another subsection, exact and misspelt.
+  EXPECT_EQ(parameter_hint(prm, {"Body block"}, "Young's modulus", false),
+            " 'Young's modulus' is an entry of 'Body block/Material'; write "
+            "it inside that subsection.");
+  EXPECT_EQ(parameter_hint(prm, {}, "Youngs modulus", false),
+            " Did you mean 'Young's modulus' (an entry of 'Body "
+            "block/Material')? Write it inside that subsection.");
+  // Nothing like it anywhere.
+  EXPECT_EQ(parameter_hint(prm, material, "Density", false), "");
+}
+
+TEST(ParameterHint, SubsectionPathAtALine)
+{
+  const std::string text = "set A = 1\n"
+                           "subsection Body block # comment\n"
+                           "  subsection Material\n"
+                           "    set Young's modulus = 1\n"
+                           "  end\n"
+                           "  # subsection Not one\n"
+                           "  set Mesh = block\n"
+                           "end\n";
+  EXPECT_EQ(subsection_path_at(text, 1), std::vector<std::string>{});
+  EXPECT_EQ(subsection_path_at(text, 4),
+            (std::vector<std::string>{"Body block", "Material"}));
+  EXPECT_EQ(subsection_path_at(text, 7),
+            std::vector<std::string>{"Body block"});
 }
