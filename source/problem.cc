@@ -277,6 +277,17 @@ namespace glide
             << "), so that the residual left is at most "
             << scene.nonlinear_solver.tolerance / small_strain
             << " of the largest load." << std::endl;
+    // Loads declared but zero (a 'Function' of '0; 0'): the scene's
+    // solution is zero at the first and the last step, which a user
+    // rarely means (a scene that declares no load at all is refused).
+    // Not with contact: an initial overlap loads the bodies.
+    if (elasticity.driving_strain() == 0. && scene.contact_pairs.empty())
+      pcout << "  warning: the loads and prescribed displacements are zero "
+               "at the first and the last load factor (every 'Function' of "
+               "the boundary conditions, 'Body force', rigid-body motions): "
+               "the displacements there are zero. Check the loads' "
+               "'Function' entries."
+            << std::endl;
     for (const auto &note : scene.unused)
       pcout << "  warning: " << note << std::endl;
     for (const auto &note : mesh_notes(scene))

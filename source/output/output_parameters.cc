@@ -26,7 +26,9 @@ namespace glide
     prm.declare_entry("Write VTU",
                       "true",
                       Patterns::Bool(),
-                      "false: write only the statistics table (studies).");
+                      "false: write no VTU or PVD files, only the tables "
+                      "(statistics.csv, timings.csv and the contact "
+                      "pairs' CSV files; studies).");
     prm.declare_entry("Every n steps",
                       "1",
                       Patterns::Integer(1),

@@ -2057,6 +2057,14 @@ def case_small_loads():
     check(abs(moved[1] / moved[0] - 1e-9) < 1e-17, f"reaction scales with the displacement: {moved}")
     _, log, _ = run(scene("block.prm"), "Output/Write VTU=false", name="ordinary")
     check("is taken relative" not in log, "ordinary loads: the tolerance as given")
+    check("prescribed displacements are zero" not in log, "ordinary loads: no zero-load warning")
+    # Loads declared but zero (a 'Function' of '0; 0' ran with exit 0 and a
+    # zero solution, in silence, until 2026-12-06): a warning.
+    rows, log, _ = run(scene("block.prm"), "Boundary condition load/Function=0; 0", "Output/Write VTU=false",
+                       name="zero")
+    check("warning: the loads and prescribed displacements are zero at the first and the last load factor" in log,
+          "zero loads: warned")
+    check(rows[-1]["reaction_bottom_y"] == 0., f"zero loads: zero reaction {rows[-1]['reaction_bottom_y']}")
     # Geometrically nonlinear (neo-Hookean: its round-off is that of
     # F = I + H, about machine epsilon / strain = 2.2e-16 / 5e-14 = 4.4e-3
     # relative here, not that of H): solved too (R = 0 before), the
