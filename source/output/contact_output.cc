@@ -106,7 +106,7 @@ namespace glide
             patches.push_back(patch);
           }
         std::vector<std::string> names{
-          "COPEN", "contact_force", "CPRESS", "CSTATUS", "CSLIP"};
+          "COPEN", "force", "CPRESS", "CSTATUS", "CSLIP"};
         for (unsigned int d = 0; d < dim; ++d)
           names.push_back("contact_normal");
         for (unsigned int d = 0; d < dim; ++d)

@@ -1465,8 +1465,14 @@ def case_contact_slip():
     grid = r.GetOutput()
     check(grid.GetNumberOfPoints() == 5, f"{grid.GetNumberOfPoints()} contact points")
     pd = grid.GetPointData()
-    for field in ("CPRESS", "COPEN", "CSTATUS", "CSLIP", "contact_normal", "displacement", "tangent1"):
+    for field in ("CPRESS", "COPEN", "force", "CSTATUS", "CSLIP", "contact_normal", "displacement", "tangent1"):
         check(pd.GetArray(field) is not None, f"contact field {field}")
+    # The scalar normal force has the contact CSV's name, not that of the
+    # bulk VTU's vector field 'contact_force' (until 2026-12-06 both were
+    # 'contact_force' in ParaView).
+    check(pd.GetArray("contact_force") is None, "no scalar field named like the bulk vector")
+    close(float(vtk_to_numpy(pd.GetArray("force")).sum()), sum(float(n["force"]) for n in nodes), 1e-9,
+          "VTU force = CSV force")
     # R13.1: in 2D t1 = e_z x n; the plane's normal is (0, 1), so t1 = (-1, 0).
     t1 = vtk_to_numpy(pd.GetArray("tangent1"))
     check(abs(t1[:, 0] + 1).max() < 1e-12 and abs(t1[:, 1]).max() < 1e-12, "tangent1 = e_z x n = (-1, 0)")
