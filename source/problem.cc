@@ -208,16 +208,16 @@ namespace glide
     // Where the loads and prescribed displacements strain the bodies by
     // less than 1e-6, the tolerance and the bodies' round-off floor shrink
     // with them, so that the residual left is at most tolerance x 1e6 of
-    // the largest load (1e-4 at the default). Not where an analytical
-    // rigid master moves: its motion, not measured here, may strain more.
-    bool master_moves = false;
-    for (const auto &p : scene.contact_pairs)
-      master_moves =
-        master_moves || (p.master_type != MasterType::surface &&
-                         (!Utilities::trim(p.translation).empty() ||
-                          Utilities::trim(p.rotation) != "0"));
-    const double strain = elasticity.driving_strain();
-    if (strain > 0. && strain < small_strain && !master_moves)
+    // the largest load (1e-4 at the default). An analytical rigid master
+    // presses into the bodies by at most its motion next to the slave
+    // nodes, which counts like a prescribed displacement (its motion
+    // across an initial gap too, which keeps the tolerance as given).
+    const double first  = 1. / scene.load_stepping.number_of_steps;
+    driving_strain      = std::max(elasticity.driving_strain(),
+                              contact.largest_master_motion({first, 1.}) /
+                                elasticity.length_scale());
+    const double strain = driving_strain;
+    if (strain > 0. && strain < small_strain)
       {
         tolerance_factor = strain / small_strain;
         newton_parameters.tolerance *= tolerance_factor;
@@ -267,9 +267,10 @@ namespace glide
       pcout << (i ? "; " : "") << effects[i];
     pcout << std::endl;
     if (tolerance_factor < 1.)
-      pcout << "  note: the loads and prescribed displacements strain the "
+      pcout << "  note: the loads, prescribed displacements and rigid masters' "
+               "motions strain the "
                "bodies by at most "
-            << elasticity.driving_strain()
+            << driving_strain
             << "; 'Nonlinear solver/Tolerance' is taken relative to that "
                "(x "
             << tolerance_factor << ": "
@@ -281,7 +282,7 @@ namespace glide
     // solution is zero at the first and the last step, which a user
     // rarely means (a scene that declares no load at all is refused).
     // Not with contact: an initial overlap loads the bodies.
-    if (elasticity.driving_strain() == 0. && scene.contact_pairs.empty())
+    if (driving_strain == 0. && scene.contact_pairs.empty())
       pcout << "  warning: the loads and prescribed displacements are zero "
                "at the first and the last load factor (every 'Function' of "
                "the boundary conditions, 'Body force', rigid-body motions): "

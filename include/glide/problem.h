@@ -156,6 +156,10 @@ namespace glide
     static constexpr double small_strain = 1e-6;
     /// The factor on 'Nonlinear solver/Tolerance' for such loads, 1 else.
     double tolerance_factor = 1.;
+    /// The largest strain the loads, prescribed displacements and moving
+    /// analytical masters impose (Elasticity::driving_strain(),
+    /// Contact::largest_master_motion() over the scene's size).
+    double driving_strain = 0.;
     /// The round-off floor the Newton solver uses (setup()).
     double newton_floor = 0.;
     /// The iterate at which an attempt stopped for alternating nodes.

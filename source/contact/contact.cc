@@ -1344,6 +1344,20 @@ namespace glide
   }
 
   template <int dim>
+  double
+  Contact<dim>::largest_master_motion(const std::vector<double> &factors) const
+  {
+    double largest = 0.;
+    for (const auto &pair : pairs)
+      if (const auto *master = pair.formulation->rigid_master())
+        for (const auto &node : pair.nodes)
+          for (const double t : factors)
+            largest =
+              std::max(largest, (master->move(node.X, 0., t) - node.X).norm());
+    return Utilities::MPI::max(largest, comm);
+  }
+
+  template <int dim>
   std::string
   Contact<dim>::passed_through(const VectorType &U_old,
                                const VectorType &U_new,

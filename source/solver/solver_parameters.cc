@@ -32,12 +32,12 @@ namespace glide
                       "same value works in SI and in mm-N-MPa. 1e-8 to 1e-12 "
                       "are sensible; at most 1e-6 (a load step's first "
                       "iterate often has 1e-6 to 1e-3, so a looser one "
-                      "accepts unconverged states). Where the loads and "
-                      "prescribed displacements strain the bodies by less "
-                      "than 1e-6, the tolerance is multiplied by that "
-                      "strain / 1e-6, so that the residual left is at most "
-                      "1e6 x this of the largest load (the log says so; not "
-                      "where an analytical rigid master moves).");
+                      "accepts unconverged states). Where the loads, "
+                      "prescribed displacements and rigid masters' motions "
+                      "strain the bodies by less than 1e-6, the tolerance "
+                      "is multiplied by that strain / 1e-6, so that the "
+                      "residual left is at most 1e6 x this of the largest "
+                      "load (the log says so).");
     prm.declare_entry("Maximum iterations",
                       "25",
                       Patterns::Integer(1, 1000),

@@ -2064,6 +2064,21 @@ def case_small_loads():
     _, log, _ = run(scene("block.prm"), "Output/Write VTU=false", name="ordinary")
     check("is taken relative" not in log, "ordinary loads: the tolerance as given")
     check("prescribed displacements are zero" not in log, "ordinary loads: no zero-load warning")
+    # An analytical rigid master that moves by 5e-12 (strain 1.2e-12): its
+    # motion counts like a prescribed displacement (until 2026-12-06 the
+    # tolerance stayed, and the reaction was 2.006e-10 against a contact
+    # force of 2.011e-10 and the 2.009e-10 that 1e-4 of the 5e-8 motion's
+    # gives). One node closes in both, so the answers scale linearly.
+    punch = []
+    for d in ("5e-8", "5e-12"):
+        rows, log, _ = run(scene_file("rigid-punch.prm"), f"Contact pair punch/Rigid master/Translation=0; -{d}*t",
+                           "Output/Write VTU=false", name="punch")
+        check(rows[-1]["contact_punch_active"] == 1, f"punch {d}: one closed node")
+        close(rows[-1]["reaction_bottom_y"], -rows[-1]["contact_punch_force_y"], 1e-6,
+              f"punch {d}: reaction = contact force")
+        check("rigid masters' motions strain the bodies" in log, f"punch {d}: the note says why")
+        punch.append(rows[-1]["reaction_bottom_y"])
+    close(punch[1] / punch[0], 1e-4, 1e-6, "punch: the force scales with the motion")
     # Loads declared but zero (a 'Function' of '0; 0' ran with exit 0 and a
     # zero solution, in silence, until 2026-12-06): a warning.
     rows, log, _ = run(scene("block.prm"), "Boundary condition load/Function=0; 0", "Output/Write VTU=false",

@@ -92,6 +92,14 @@ namespace glide
     double
     round_off_floor() const;
 
+    /// The largest distance an analytical rigid master's points next to
+    /// the slave nodes move from load factor 0 to any of @p factors
+    /// (collective; 0 without a moving analytical master): what a moving
+    /// master can press into the bodies, for the tolerance of tiny loads
+    /// (Problem's set-up, Elasticity::driving_strain()).
+    double
+    largest_master_motion(const std::vector<double> &factors) const;
+
     /// Couplings of contact terms, for the sparsity pattern: each slave
     /// node with the master nodes it can reach by sliding about one master
     /// facet from where it is now.
