@@ -104,6 +104,7 @@ glide_bad_input(cli.set_unknown_section --expect "--set 'Nowhere/Entry=1': the s
 # A misspelt body or entry on the command line: the name it was meant to be
 # (deal.II's "You can't ask for entry ... you have not yet declared" before).
 glide_bad_input(cli.set_misspelt_body --expect "--set 'Body blok/Material/Young's modulus=2': the scene has no subsection 'Body blok'\\. Did you mean 'Body block'\\?" -- ${BLOCK} --set "Body blok/Material/Young's modulus=2")
+glide_bad_input(cli.set_body_not_in_bodies --expect "--set 'Body punch/Material/Young's modulus=2': the scene has no subsection 'Body punch'\\. The scene's subsections 'Body \\.\\.\\.' are 'Body block' \\(one for each name in 'Bodies'%3B add a name there for a new one\\)" -- ${BLOCK} --set "Body punch/Material/Young's modulus=2")
 glide_bad_input(cli.set_misspelt_entry --expect "--set 'Body block/Material/Youngs modulus=2': there is no entry 'Youngs modulus' in subsection 'Body block/Material'\\. Did you mean 'Young's modulus'\\?" -- ${BLOCK} --set "Body block/Material/Youngs modulus=2")
 glide_bad_input(cli.set_missing_argument --expect "--set needs an argument" -- ${BLOCK} --set)
 glide_bad_input(cli.print_parameters_format --expect "--print-parameters takes prm, json or xml, not 'yaml'" -- --print-parameters yaml)

@@ -127,7 +127,31 @@ namespace glide
     if (const auto best = closest(name, own); !best.empty())
       return " Did you mean '" + best + "'?";
     if (subsection)
-      return "";
+      {
+        // 'Body <name>' for a name that 'Bodies' does not list: the ones
+        // it does (as for conditions, node sets and contact pairs).
+        const auto space = name.rfind(' ');
+        if (space == std::string::npos)
+          return "";
+        const std::string prefix = name.substr(0, space + 1);
+        std::string       listed;
+        for (const auto &c : own)
+          if (c.rfind(prefix, 0) == 0)
+            listed += (listed.empty() ? "'" : ", '") + c + "'";
+        const std::map<std::string, std::string> lists{
+          {"Body ", "Bodies"},
+          {"Boundary condition ", "Boundary conditions"},
+          {"Node set ", "Node sets"},
+          {"Contact pair ", "Contact pairs"}};
+        const auto list = lists.find(prefix);
+        return listed.empty() ?
+                 "" :
+                 " The scene's subsections '" + prefix + "...' are " + listed +
+                   (list == lists.end() ?
+                      std::string(".") :
+                      " (one for each name in '" + list->second +
+                        "'; add a name there for a new one).");
+      }
     // An entry written in the wrong subsection: the subsections that
     // declare it, or else one close to it.
     std::vector<std::string> elsewhere;

@@ -240,6 +240,11 @@ TEST(ParameterHint, ClosestNameOrNone)
             " Did you mean 'Material'?");
   EXPECT_EQ(parameter_hint(prm, {}, "Body blok", true),
             " Did you mean 'Body block'?");
+  // A body that 'Bodies' does not list: the ones it does.
+  EXPECT_EQ(parameter_hint(prm, {}, "Body punch", true),
+            " The scene's subsections 'Body ...' are 'Body block' (one for "
+            "each name in 'Bodies'; add a name there for a new one).");
+  EXPECT_EQ(parameter_hint(prm, {}, "Nowhere", true), "");
   // An entry of another subsection, exact and misspelt.
   EXPECT_EQ(parameter_hint(prm, {"Body block"}, "Young's modulus", false),
             " 'Young's modulus' is an entry of 'Body block/Material'; write "
