@@ -408,7 +408,12 @@ namespace glide
               "active-set cycling: slave node(s) at " + cycling +
               " switched between open and closed more than " +
               std::to_string(ActiveSetMonitor<dim>::maximum_switches) +
-              " times in this load step");
+              " times in this load step" +
+              ((corner_cycling =
+                  corner_cycling || monitor.cycling_at_master_end(comm)) ?
+                 std::string(" (the master surface ends inside their slave "
+                             "facets)") :
+                 std::string()));
           // Full Newton steps that have raised the scaled residual more
           // than 100 times above the solve's first one, and raise it again,
           // have left the region where the active set they predict is of
@@ -845,7 +850,17 @@ namespace glide
             pcout << "  step failed: " << result.message << std::endl;
             try
               {
-                stepper.reject(result.message + elasticity.holding_hint());
+                stepper.reject(
+                  result.message + elasticity.holding_hint() +
+                  (corner_cycling ?
+                     "\nNote: slave nodes cycled where the master surface "
+                     "ends inside their slave facets (mortar): a sharp corner "
+                     "of the master over a slave facet holds that facet "
+                     "down, and as the corner crosses a slave node, the "
+                     "node's constraint comes and goes, so smaller steps do "
+                     "not help. Make the body with the corner the slave, or "
+                     "use 'Formulation = node to surface' for this pair." :
+                     ""));
               }
             catch (const std::runtime_error &)
               {
@@ -887,6 +902,7 @@ namespace glide
           }
         U = U_trial;
         stepper.accept();
+        corner_cycling = false;
         pcout << "  converged in " << result.iterations
               << " iteration(s), scaled residual "
               << scientific(result.residual_norm) << std::endl;

@@ -162,6 +162,10 @@ namespace glide
     double driving_strain = 0.;
     /// The round-off floor the Newton solver uses (setup()).
     double newton_floor = 0.;
+    /// Whether an attempt of the current load step ended with nodes
+    /// cycling where the master ends inside their slave facets (the
+    /// step's failure message then says what to do).
+    bool corner_cycling = false;
     /// The iterate at which an attempt stopped for alternating nodes.
     VectorType restart;
     bool       have_restart = false;

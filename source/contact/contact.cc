@@ -972,6 +972,8 @@ namespace glide
             const int piece = pair.formulation->holdable_piece(s[i]);
             status.holdable = piece >= 0;
             status.piece    = piece;
+            // (With a margin for the round-off of the covered weight.)
+            status.at_master_end = s[i].coverage < 1. - 1e-6;
             result.push_back(status);
           }
       }

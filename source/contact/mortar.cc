@@ -827,7 +827,10 @@ namespace glide
     s.tangents = contact_tangents<dim>(s.normal);
     // A node whose facets the master covers over less than a millionth of
     // its weight has no constraint (as a node beyond the end of the master).
-    if (t.weight > 1e-6 * (*this->nodes)[i].area)
+    const double area = (*this->nodes)[i].area;
+    if (area > 0.)
+      s.coverage = t.weight / area;
+    if (t.weight > 1e-6 * area)
       {
         s.outcome = Outcome::found;
         s.gap     = t.weighted_gap / t.weight;

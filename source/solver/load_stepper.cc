@@ -57,14 +57,19 @@ namespace glide
     // The floor, with a margin for the rounding of repeated halving.
     if (dt <= dt_min * (1. + 1e-9))
       {
+        // The notes on what may have caused the failure ("\nNote: ...")
+        // after the advice that belongs to the reason.
+        const auto         notes = reason.find("\nNote: ");
         std::ostringstream text;
         text << step << " failed at load factor " << t
              << " with the smallest increment the scene allows (" << dt_min
              << " = 1 / 'Number of steps' x 'Cut-back factor' ^ 'Maximum "
                 "cut-backs'): "
-             << reason
+             << reason.substr(0, notes)
              << "; raise 'Load stepping/Maximum cut-backs' or 'Number of "
-                "steps' if smaller increments should be tried";
+                "steps' if smaller increments should be tried"
+             << (notes == std::string::npos ? std::string() :
+                                              reason.substr(notes));
         throw std::runtime_error(text.str());
       }
     ++n_cut_backs;

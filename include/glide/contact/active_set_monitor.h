@@ -48,6 +48,9 @@ namespace glide
       int                piece    = -1;    ///< master piece, -1 where none
       bool               holdable = false; ///< a faceted master's node
       dealii::Point<dim> X;                ///< reference position, for messages
+      /// The master ends inside the node's slave facets (mortar,
+      /// Constraint::coverage below 1).
+      bool at_master_end = false;
     };
 
     /// Switches between open and closed per node and solve before the
@@ -72,6 +75,7 @@ namespace glide
       recorded = 0;
       last.clear();
       switches.clear();
+      at_end.clear();
       pieces.clear();
       returns.clear();
     }
@@ -88,6 +92,9 @@ namespace glide
         {
           last = status;
           switches.assign(status.size(), 0);
+          at_end.assign(status.size(), false);
+          for (unsigned int k = 0; k < status.size(); ++k)
+            at_end[k] = status[k].at_master_end;
           returns.assign(status.size(), 0);
           pieces.assign(status.size(), {{-1, -1}});
           for (unsigned int k = 0; k < status.size(); ++k)
@@ -97,6 +104,7 @@ namespace glide
       for (unsigned int k = 0; k < status.size(); ++k)
         {
           const auto &s = status[k];
+          at_end[k]     = at_end[k] || s.at_master_end;
           if (s.closed != last[k].closed)
             {
               ++switches[k];
@@ -131,6 +139,17 @@ namespace glide
       return nodes;
     }
 
+    /// Whether a node that cycling() lists had the master end inside its
+    /// slave facets at any iterate (collective).
+    bool
+    cycling_at_master_end(const MPI_Comm comm) const
+    {
+      bool any = false;
+      for (unsigned int k = 0; k < switches.size(); ++k)
+        any = any || (switches[k] > maximum_switches && at_end[k]);
+      return dealii::Utilities::MPI::max(any ? 1 : 0, comm) > 0;
+    }
+
     /// Nodes whose projection went back to the piece it had left at least
     /// maximum_returns times, with the piece they were on last and the one
     /// they alternated with.
@@ -147,6 +166,7 @@ namespace glide
   private:
     std::vector<Status>             last;
     std::vector<unsigned int>       switches;
+    std::vector<bool>               at_end;
     std::vector<std::array<int, 2>> pieces;
     std::vector<unsigned int>       returns;
     unsigned int                    recorded = 0;

@@ -85,6 +85,10 @@ namespace glide
     dealii::Point<dim> anchor; ///< small sliding: current anchor point
     /// Local tangent directions (R13.1).
     std::array<dealii::Tensor<1, dim>, dim - 1> tangents;
+    /// Mortar: the share of the node's weight (int N dA over its slave
+    /// facets) that the master covers; below 1 where the master ends
+    /// inside the node's facets. 1 for the other formulations.
+    double coverage = 1.;
     /// Finite sliding: the projection (rigid analytical or deformable).
     typename RigidMaster<dim>::Projection   rigid;
     typename MasterSurface<dim>::Projection projection;
