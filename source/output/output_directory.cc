@@ -6,7 +6,10 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/statvfs.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -23,6 +26,7 @@ namespace glide
 
   const char *const OutputDirectory::manifest_name = ".glide-output";
   const char *const OutputDirectory::staging_name  = ".glide-staging";
+  const char *const OutputDirectory::lock_name     = ".glide-lock";
 
   void
   throw_output_error_on_any_process(const std::string &failure, MPI_Comm comm)
@@ -105,6 +109,11 @@ namespace glide
       return;
     clear_cleanup_at_once(this);
     remove_temporaries();
+    // Closing the lock file releases the lock (the file stays: removing
+    // it could let a third run lock a new file while a second one holds
+    // the old).
+    if (lock_fd >= 0)
+      ::close(lock_fd);
   }
 
 
@@ -112,6 +121,10 @@ namespace glide
   void
   OutputDirectory::remove_temporaries()
   {
+    // Only what this run made: a run refused because another one holds
+    // the directory must not touch that run's staging directory.
+    if (!owner)
+      return;
     std::error_code ec;
     fs::remove_all(staging_directory, ec);
     for (const auto &f : manifest)
@@ -179,7 +192,8 @@ namespace glide
             {
               std::vector<std::string> entries;
               for (const auto &e : fs::directory_iterator(dir, ec))
-                entries.push_back(e.path().filename().string());
+                if (e.path().filename() != lock_name)
+                  entries.push_back(e.path().filename().string());
               if (ec)
                 throw OutputError("Cannot read the output directory " +
                                   in_quotes(dir) + ": " + advice(ec.value()) +
@@ -195,6 +209,21 @@ namespace glide
                   "'Scene name' or 'Output/Directory', or move those files "
                   "away (results of a glide older than this one: remove "
                   "the directory).");
+            }
+          lock(dir);
+          // What an earlier run wrote here, read again under the lock: a
+          // run that held it may have written more since.
+          if (fs::exists(manifest_path, ec))
+            {
+              earlier.clear();
+              std::ifstream in(manifest_path);
+              std::string   line;
+              while (std::getline(in, line))
+                if (!line.empty() && line[0] != '#' &&
+                    line.find('/') == std::string::npos && line != "." &&
+                    line != "..")
+                  earlier.push_back(line);
+              earlier.push_back(staging_name);
             }
           for (const auto &f : earlier)
             for (const std::string suffix : {"", ".tmp"})
@@ -256,6 +285,55 @@ namespace glide
         std::error_code ec;
         fs::remove(probe, ec);
         throw_output_error_on_any_process(failure, comm);
+      }
+  }
+
+
+
+  void
+  OutputDirectory::lock(const fs::path &dir)
+  {
+    // Two runs writing into one directory remove each other's files, and
+    // their indexes list the other's data (a second run with the same
+    // 'Scene name' took over the directory of a live one, until
+    // 2026-12-06). An advisory lock, released by the operating system
+    // however the process ends, even by SIGKILL.
+    const fs::path path = dir / lock_name;
+    lock_fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (lock_fd < 0)
+      throw OutputError("Cannot create " + in_quotes(path) + ": " +
+                        advice(errno) + ". Check 'Output/Directory'.");
+    if (::flock(lock_fd, LOCK_EX | LOCK_NB) != 0)
+      {
+        if (errno != EWOULDBLOCK)
+          {
+            owner = true; // a file system without locks: go on without
+            return;
+          }
+        std::string holder;
+        {
+          std::ifstream in(path);
+          std::getline(in, holder);
+        }
+        ::close(lock_fd);
+        lock_fd = -1;
+        throw OutputError(
+          "The output directory " + in_quotes(dir) +
+          " is in use by another glide run" +
+          (holder.empty() ? std::string() : " (" + holder + ")") +
+          ": two runs writing into one directory would remove each "
+          "other's results. Wait for it to end, or choose another 'Scene "
+          "name' or 'Output/Directory'.");
+      }
+    owner          = true;
+    char host[256] = {};
+    ::gethostname(host, sizeof(host) - 1);
+    const std::string holder = "process " + std::to_string(::getpid()) +
+                               " on " + std::string(host) + "\n";
+    if (::ftruncate(lock_fd, 0) == 0)
+      {
+        const auto written = ::pwrite(lock_fd, holder.data(), holder.size(), 0);
+        (void)written; // only informative: the lock is what counts
       }
   }
 

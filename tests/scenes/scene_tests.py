@@ -2160,6 +2160,36 @@ def case_motion_contact_cannot_hold():
     check(len(rows) == 2 and "only contact holds" not in log, "held in x: converges, no warning")
 
 
+def case_output_directory_in_use():
+    """P4.1/P5.1: a second run into the directory of a live run is refused
+    (until 2026-12-06 it removed the first run's files, and the first run's
+    .pvd listed files that were gone or the second run's mesh). The first
+    run ends normally with all its steps; once it has ended, the directory
+    is free again. The lock file stays and is not a foreign file."""
+    output = tempfile.mkdtemp(prefix="glide-scene-")
+    first = [ARGS.glide, scene("block.prm"), "--set", f"Output/Directory={output}", "--set", "Scene name=shared",
+             "--set", "Load stepping/Number of steps=4000", "--set", "Output/Write VTU=false"]
+    p = subprocess.Popen(first, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    stats = os.path.join(output, "shared", "statistics.csv")
+    for _ in range(600):  # until the first run has written a step
+        if os.path.exists(stats) or p.poll() is not None:
+            break
+        time.sleep(0.1)
+    running = p.poll() is None
+    check(running, "the first run is still running when the second starts")
+    rows, log, _ = run(scene("block.prm"), "Load stepping/Number of steps=2", output=output, name="shared",
+                       expect_status=4)
+    check("is in use by another glide run (process " in log and "choose another 'Scene name'" in log,
+          f"the second run is refused: {log.strip().splitlines()[-1:]}")
+    first_log, _ = p.communicate(timeout=600)
+    check(p.returncode == 0, f"the first run ends normally ({p.returncode})")
+    with open(stats) as f:
+        check(len(list(csv.DictReader(f))) == 4000, "all its 4000 steps are listed")
+    rows, log, _ = run(scene("block.prm"), "Load stepping/Number of steps=2", output=output, name="shared")
+    check(len(rows) == 2, "after it, the directory is free")
+    check(os.path.exists(os.path.join(output, "shared", ".glide-lock")), "the lock file stays")
+
+
 def case_mortar_corner_cycling():
     """R16.3: slave nodes that cycle where a sharp corner of the master lies
     inside their slave facets (mortar; tests/scenes/punch-corner.prm) fail

@@ -2,6 +2,7 @@
 
 #include <mpi.h>
 
+#include <filesystem>
 #include <functional>
 #include <iosfwd>
 #include <set>
@@ -128,6 +129,10 @@ namespace glide
     static const char *const manifest_name;
     /// The staging directory's name.
     static const char *const staging_name;
+    /// The lock file's name: a run holds an advisory lock on it from
+    /// prepare() to its end, and a second run into the same directory is
+    /// refused meanwhile. It stays in the directory.
+    static const char *const lock_name;
 
   private:
     /// Remove the staging directory and this run's `.tmp` files.
@@ -136,6 +141,10 @@ namespace glide
 
     void
     write_manifest();
+    /// Lock the directory @p dir for this run (lock_name); throws
+    /// OutputError if another run holds it.
+    void
+    lock(const std::filesystem::path &dir);
     /// Claim @p file, write `<file>.tmp` with @p writer and check it;
     /// on failure remove it and throw OutputError.
     void
@@ -150,5 +159,10 @@ namespace glide
     const bool               root;
     std::set<std::string>    manifest;
     std::vector<std::string> pending_indexes;
+    /// The lock file's descriptor while this run holds it, else -1.
+    int lock_fd = -1;
+    /// Whether this run holds the directory (lock()): only then does it
+    /// remove temporary files.
+    bool owner = false;
   };
 } // namespace glide
