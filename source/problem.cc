@@ -947,7 +947,12 @@ namespace glide
     const double per_process = peak_memory_mib(comm, true);
     pcout << "Finished " << steps << " load step(s) with " << cut_backs
           << " cut-back(s) in " << std::fixed << std::setprecision(2)
-          << wall_time << " s; peak memory " << memory << " MiB" << std::endl;
+          << wall_time << " s; peak memory " << memory << " MiB";
+    // Under MPI the sum over the processes (until 2026-12-06 not said).
+    if (const unsigned int n = Utilities::MPI::n_mpi_processes(comm); n > 1)
+      pcout << " (sum over " << n << " processes; largest process "
+            << per_process << " MiB)";
+    pcout << std::endl;
     std::string failure;
     if (Utilities::MPI::this_mpi_process(comm) == 0)
       try

@@ -67,6 +67,16 @@ namespace glide
     {
       return "'" + p.string() + "'";
     }
+
+    /// @p advice (advice()) ended with the advice to check the output
+    /// directory's parameter, unless it already names it.
+    std::string
+    with_check(const std::string &advice)
+    {
+      return advice + (advice.find("'Output/Directory'") == std::string::npos ?
+                         ". Check 'Output/Directory'." :
+                         ".");
+    }
   } // namespace
 
   std::string
@@ -170,8 +180,8 @@ namespace glide
           const bool created = fs::create_directories(dir, ec);
           if (ec)
             throw OutputError("Cannot create the output directory " +
-                              in_quotes(dir) + ": " + advice(ec.value()) +
-                              ". Check 'Output/Directory'.");
+                              in_quotes(dir) + ": " +
+                              with_check(advice(ec.value())));
 
           // What an earlier run wrote here.
           std::vector<std::string> earlier;
@@ -302,7 +312,7 @@ namespace glide
     lock_fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (lock_fd < 0)
       throw OutputError("Cannot create " + in_quotes(path) + ": " +
-                        advice(errno) + ". Check 'Output/Directory'.");
+                        with_check(advice(errno)));
     if (::flock(lock_fd, LOCK_EX | LOCK_NB) != 0)
       {
         if (errno != EWOULDBLOCK)
