@@ -183,22 +183,11 @@ namespace glide
                               in_quotes(dir) + ": " +
                               with_check(advice(ec.value())));
 
-          // What an earlier run wrote here.
-          std::vector<std::string> earlier;
-          const fs::path           manifest_path = dir / manifest_name;
-          if (fs::exists(manifest_path, ec))
-            {
-              std::ifstream in(manifest_path);
-              std::string   line;
-              while (std::getline(in, line))
-                // Plain names only: never follow a path out of here.
-                if (!line.empty() && line[0] != '#' &&
-                    line.find('/') == std::string::npos && line != "." &&
-                    line != "..")
-                  earlier.push_back(line);
-              earlier.push_back(staging_name);
-            }
-          else if (!created)
+          // A directory without a manifest is taken over only if it is
+          // empty (but for the lock file of a run that was refused or is
+          // starting).
+          const fs::path manifest_path = dir / manifest_name;
+          if (!fs::exists(manifest_path, ec) && !created)
             {
               std::vector<std::string> entries;
               for (const auto &e : fs::directory_iterator(dir, ec))
@@ -221,14 +210,14 @@ namespace glide
                   "the directory).");
             }
           lock(dir);
-          // What an earlier run wrote here, read again under the lock: a
-          // run that held it may have written more since.
+          // What an earlier run wrote here, read under the lock.
+          std::vector<std::string> earlier;
           if (fs::exists(manifest_path, ec))
             {
-              earlier.clear();
               std::ifstream in(manifest_path);
               std::string   line;
               while (std::getline(in, line))
+                // Plain names only: never follow a path out of here.
                 if (!line.empty() && line[0] != '#' &&
                     line.find('/') == std::string::npos && line != "." &&
                     line != "..")
