@@ -5,11 +5,17 @@
 #include <glide/output/interruption.h>
 #include <glide/output/output_error.h>
 #include <glide/problem.h>
+#include <glide/revision.h> // generated at build time (cmake/version.cmake)
 #include <glide/scene/input_error.h>
 #include <glide/scene/scene.h>
 
+#include <deal.II/base/config.h>
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
+
+#include <Trilinos_version.h>
+#include <p4est_config.h>
+#include <sundials/sundials_config.h>
 
 #include <csignal>
 #include <filesystem>
@@ -28,6 +34,8 @@ namespace
     "\n"
     "Options:\n"
     "  --help                     print this help and exit\n"
+    "  --version                  print glide's source revision and the\n"
+    "                             versions of the libraries it runs on\n"
     "  --print-parameters [FMT]   print every scene parameter with default,\n"
     "                             pattern and documentation; FMT is prm\n"
     "                             (default), json or xml\n"
@@ -46,6 +54,23 @@ namespace
     "143, SIGINT: 130; also SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, SIGXCPU and\n"
     "SIGALRM) after the last complete load step. Run in parallel with\n"
     "mpirun -np N glide SCENE.prm.\n";
+
+  /// What a bug report needs: glide's revision (git describe of the tree
+  /// it was built from; "-dirty" with uncommitted changes) and the
+  /// libraries, as compiled against and, for MPI, as loaded.
+  void
+  print_version(std::ostream &out)
+  {
+    char library[MPI_MAX_LIBRARY_VERSION_STRING] = "";
+    int  length                                  = 0;
+    MPI_Get_library_version(library, &length);
+    std::string mpi(library, library + length);
+    mpi = mpi.substr(0, mpi.find_first_of(",\n"));
+    out << "glide " << GLIDE_REVISION << "\n"
+        << "  deal.II " << DEAL_II_PACKAGE_VERSION << ", Trilinos "
+        << TRILINOS_VERSION_STRING << ", SUNDIALS " << SUNDIALS_VERSION
+        << ", p4est " << P4EST_VERSION << ", " << mpi << "\n";
+  }
 
   /// Standard output must have taken everything (a closed or full
   /// standard output is an input/output error, not a crash).
@@ -102,6 +127,15 @@ main(int argc, char **argv)
                 {
                   std::cout << usage;
                   check_standard_output("the help");
+                }
+              return 0;
+            }
+          if (a == "--version")
+            {
+              if (root)
+                {
+                  print_version(std::cout);
+                  check_standard_output("the version");
                 }
               return 0;
             }

@@ -404,16 +404,21 @@ namespace glide
             }
           const std::string cycling = monitor.cycling(comm);
           if (!cycling.empty())
-            throw std::runtime_error(
-              "active-set cycling: slave node(s) at " + cycling +
-              " switched between open and closed more than " +
-              std::to_string(ActiveSetMonitor<dim>::maximum_switches) +
-              " times in this load step" +
-              ((corner_cycling =
-                  corner_cycling || monitor.cycling_at_master_end(comm)) ?
-                 std::string(" (the master surface ends inside their slave "
-                             "facets)") :
-                 std::string()));
+            {
+              // Once seen in this step, the later attempts' messages keep
+              // saying so.
+              corner_cycling =
+                monitor.cycling_at_master_end(comm) || corner_cycling;
+              throw std::runtime_error(
+                "active-set cycling: slave node(s) at " + cycling +
+                " switched between open and closed more than " +
+                std::to_string(ActiveSetMonitor<dim>::maximum_switches) +
+                " times in this load step" +
+                (corner_cycling ?
+                   std::string(" (the master surface ends inside their "
+                               "slave facets)") :
+                   std::string()));
+            }
           // Full Newton steps that have raised the scaled residual more
           // than 100 times above the solve's first one, and raise it again,
           // have left the region where the active set they predict is of

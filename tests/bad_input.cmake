@@ -110,6 +110,7 @@ glide_bad_input(cli.set_missing_argument --expect "--set needs an argument" -- $
 glide_bad_input(cli.print_parameters_format --expect "--print-parameters takes prm, json or xml, not 'yaml'" -- --print-parameters yaml)
 glide_bad_input(cli.print_parameters_full_stdout --stdout full --status 4 --expect "input/output error: Cannot write the parameters to standard output" -- --print-parameters)
 glide_bad_input(cli.print_parameters_closed_stdout --stdout closed --status 4 --expect "input/output error: Cannot write the parameters to standard output" -- --print-parameters json)
+glide_bad_input(cli.version_full_stdout --stdout full --status 4 --expect "Cannot write the version to standard output" -- --version)
 glide_bad_input(cli.help_full_stdout --stdout full --status 4 --expect "Cannot write the help to standard output" -- --help)
 
 # Scene names are plain names inside the output directory.

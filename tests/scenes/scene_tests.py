@@ -2160,6 +2160,26 @@ def case_motion_contact_cannot_hold():
     check(len(rows) == 2 and "only contact holds" not in log, "held in x: converges, no warning")
 
 
+def case_version():
+    """P4.1: 'glide --version' names the revision the program was built from
+    (a commit of this repository, '-dirty' allowed) and the libraries."""
+    p = subprocess.run([ARGS.glide, "--version"], capture_output=True, text=True, timeout=60)
+    check(p.returncode == 0 and p.stderr == "", f"exit 0, nothing on stderr ({p.returncode}, {p.stderr!r})")
+    m = re.match(r"glide (\S+)\n  deal\.II (9\.4\.\d+), Trilinos (\d+\.\d+\S*), SUNDIALS (\d+\.\d+\.\d+), "
+                 r"p4est (\d+\.\d+\S*), (.+)\n$", p.stdout)
+    check(m is not None, f"revision and library versions: {p.stdout!r}")
+    if m is None:
+        return
+    revision = m.group(1).removesuffix("-dirty")
+    if shutil.which("git") and os.path.isdir(os.path.join(ROOT, ".git")):
+        known = subprocess.run(["git", "-C", ROOT, "cat-file", "-e", revision + "^{commit}"],
+                               capture_output=True).returncode == 0
+        check(known, f"the revision '{revision}' is a commit of {ROOT}")
+    else:
+        check(revision == "unknown", f"without git the revision is 'unknown' ({revision})")
+    check("MPI" in m.group(6), f"the MPI library is named ({m.group(6)})")
+
+
 def case_output_directory_in_use():
     """P4.1/P5.1: a second run into the directory of a live run is refused
     (until 2026-12-06 it removed the first run's files, and the first run's

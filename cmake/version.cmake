@@ -1,0 +1,14 @@
+# Writes <OUTPUT> with the source tree's revision (git describe), run at every
+# build by the target glide_version; configure_file rewrites the file only
+# when the revision changed, so an unchanged tree recompiles nothing.
+# Without git (a source archive) the revision is "unknown".
+set(GLIDE_REVISION "unknown")
+find_package(Git QUIET)
+if(GIT_FOUND)
+  execute_process(COMMAND ${GIT_EXECUTABLE} -C ${SOURCE_DIR} describe --always --dirty --tags
+    OUTPUT_VARIABLE _revision OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET RESULT_VARIABLE _status)
+  if(_status EQUAL 0 AND _revision)
+    set(GLIDE_REVISION "${_revision}")
+  endif()
+endif()
+configure_file(${SOURCE_DIR}/cmake/version.h.in ${OUTPUT} @ONLY)
