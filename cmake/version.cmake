@@ -5,6 +5,16 @@
 set(GLIDE_REVISION "unknown")
 find_package(Git QUIET)
 if(GIT_FOUND)
+  # Only the tree's own repository (not one that a source archive was
+  # unpacked into).
+  execute_process(COMMAND ${GIT_EXECUTABLE} -C ${SOURCE_DIR} rev-parse --show-toplevel
+    OUTPUT_VARIABLE _top OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
+endif()
+if(GIT_FOUND AND _top)
+  file(REAL_PATH "${_top}" _top)
+  file(REAL_PATH "${SOURCE_DIR}" _source)
+endif()
+if(GIT_FOUND AND _top AND _top STREQUAL _source)
   execute_process(COMMAND ${GIT_EXECUTABLE} -C ${SOURCE_DIR} describe --always --dirty --tags
     OUTPUT_VARIABLE _revision OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET RESULT_VARIABLE _status)
   if(_status EQUAL 0 AND _revision)
