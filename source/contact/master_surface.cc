@@ -1636,10 +1636,33 @@ namespace glide
   {
     // The wider search only where the usual one finds nothing: deeper
     // candidates must not compete with the pieces next to the point.
-    const Projection p = project_within(xs, 1.5 * max_size);
-    if (p.found || search_radius <= 1.5 * max_size)
-      return p;
-    return project_within(xs, search_radius);
+    double     radius = 1.5 * max_size;
+    Projection p      = project_within(xs, radius);
+    if (!p.found && search_radius > radius)
+      {
+        radius = search_radius;
+        p      = project_within(xs, radius);
+      }
+    // A point found farther away than the search reached: the pieces whose
+    // boxes lie outside the search box were not tried, and one of them may
+    // hold a closer point. A slave point 1.7 facet lengths beyond the end
+    // of a smoothed master took the clamped end of the transition curve
+    // before the end facet (whose box reached it) as its meeting point,
+    // while the end facet's box, and with it the end of the master, was
+    // out of reach: contact with nothing, exit 0
+    // (scene.beyond_the_masters_end). Search again out to that distance: every
+    // piece with a point closer than it is then tried. The candidates only
+    // grow, so this ends; a few passes suffice (an inside projection is
+    // preferred to a closer clamped one, so the distance may grow once more).
+    for (unsigned int pass = 0; pass < 4 && p.found; ++pass)
+      {
+        const double distance = (xs - p.point).norm();
+        if (distance <= radius)
+          break;
+        radius = distance * (1. + 1e-8) + 1e-12 * max_size;
+        p      = project_within(xs, radius);
+      }
+    return p;
   }
 
   template <int dim>

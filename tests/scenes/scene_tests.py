@@ -2235,6 +2235,37 @@ def case_mortar_corner_cycling():
     close(forces[0], forces[1], 0.05, "punch force, punch as slave against node to surface")
 
 
+def case_beyond_the_masters_end():
+    """R3.1: a slave node beyond the end of a smoothed master carries no
+    force, wherever it lies (tests/scenes/slide-off-the-end.prm). Until
+    2026-12-07, a node 1.6 to 1.75 facet lengths beyond the end took the
+    end of the smoothing curve next to the end facet as its closest point
+    (the end facet's search box did not reach it): forces of up to 0.24
+    on a slave that had left the master, and a block placed beside the
+    master, not above it, was held up by it."""
+    rows, log, _ = run(scene("slide-off-the-end.prm"), "Output/Write VTU=false", name="off")
+    check(len(rows) == 40, f"40 steps ({len(rows)})")
+    pressed = [r for r in rows if 0.1 - 1e-9 <= r["load_factor"] <= 0.6 + 1e-9]
+    check(all(r["contact_pair_force_y"] > 0.2 for r in pressed), "pressed onto the master: it carries the push")
+    # The slave's left end x = 0.6 + 0.6 (t - 0.1) / 0.9 passes the end of
+    # the master's extension (1.005) at t = 0.7075.
+    gone = [r for r in rows if r["load_factor"] >= 0.725 - 1e-9]
+    check(len(gone) == 12 and all(r["contact_pair_force_y"] == 0 and r["contact_pair_active"] == 0 for r in gone),
+          "beyond the end: no force, no closed node at any step: "
+          + " ".join(f'{r["load_factor"]:.3f}:{r["contact_pair_force_y"]:.3g}' for r in gone))
+    check(all(r["contact_pair_beyond_end"] == 7 for r in gone), "every slave node counted beyond the end")
+    # Beside the master at both ends, 1.7 facet lengths away, and at half
+    # the facet size (master 20 x 5): 1 step, geometrically linear.
+    for left, n in ((1.17, 10), (-0.47, 10), (1.085, 20)):
+        rows, log, _ = run(scene("slide-off-the-end.prm"), "Output/Write VTU=false", "Load stepping/Number of steps=1",
+                           "Discretization/Geometric nonlinearity=false", "Boundary condition push/Function=0; -0.01*t",
+                           f"Body upper/Block/Lower corner={left}, 0.5", f"Body upper/Block/Upper corner={left + 0.3:g}, 0.7",
+                           f"Body lower/Block/Subdivisions={n}, 5", name="beside")
+        check(rows[-1]["contact_pair_force_y"] == 0 and rows[-1]["contact_pair_active"] == 0,
+              f"block at x = {left}..{left + 0.3:g}, master of {n} facets: no contact "
+              f"({rows[-1]['contact_pair_force_y']})")
+
+
 def case_finer_master_over_the_contact_area():
     """R16.3: the warning about master facets shorter than the slave's
     takes the median over the contact area, not over the closed nodes
