@@ -2266,6 +2266,30 @@ def case_beyond_the_masters_end():
               f"({rows[-1]['contact_pair_force_y']})")
 
 
+def case_mortar_slip():
+    """R12, R13.1: CSLIP is the accumulated slip relative to the master's
+    material for mortar as for node to surface: a block pressed onto a
+    longer one and slid by 0.2 (tests/scenes/slide-off-the-end.prm, the
+    slide shortened so that it stays on the master). Until 2026-12-07 mortar measured the slip relative to the
+    current mortar point, which follows the slave node: CSLIP 1e-12 and
+    max_slip 2.6e-6 after a slide of 0.6."""
+    slide = "Boundary condition push/Function=0.2*max(0,t-0.1)/0.9; -0.01*min(1,t/0.1)"
+    for formulation in ("mortar", "node to surface"):
+        rows, log, out = run(scene("slide-off-the-end.prm"), slide, "Load stepping/Number of steps=10",
+                             "Output/Every n steps=10", f"Contact pair pair/Formulation={formulation}", name="slip")
+        closed = [n for n in contact_nodes(out, "pair") if n["CSTATUS"] > 0]
+        check(len(closed) >= 5, f"{formulation}: the slave's inner nodes closed ({len(closed)} of 7)")
+        # The slave's bottom slides with its top, to within its shear and
+        # bending (measured 2026-12-07: 0.1956 to 0.2027).
+        check(all(abs(n["CSLIP"] - 0.2) < 0.006 for n in closed),
+              f"{formulation}: CSLIP = 0.2 +- 3 % at every closed node: " + " ".join(f'{n["CSLIP"]:.4f}' for n in closed))
+        # Slip path length against net slip: nearly a straight slide.
+        check(all(0.95 * n["CSLIP"] < abs(n["CSLIP1"]) <= n["CSLIP"] * (1 + 1e-9) for n in closed),
+              f"{formulation}: |CSLIP1| <= CSLIP, within 5 %")
+        close(rows[-1]["contact_pair_max_slip"], max(n["CSLIP"] for n in closed), 1e-9,
+              f"{formulation}: max_slip in statistics.csv")
+
+
 def case_finer_master_over_the_contact_area():
     """R16.3: the warning about master facets shorter than the slave's
     takes the median over the contact area, not over the closed nodes
