@@ -1386,7 +1386,16 @@ namespace glide
               }
             const double depth = master->passage_depth(
               x_old, t_old, x_new, t_new, 1e-6 * node.size);
-            if (depth > node.size)
+            // Deeper than the node's facet size (a node that slides round
+            // the master at a small gap dips in by the sagitta of its path,
+            // doc/theory/nonlinear-solution.md), or than half the radius
+            // where the master is smaller than a facet: a sagitta of R / 2
+            // needs a slide of a whole diameter. (A circle of radius 0.2 on
+            // facets of 0.25, moved from 0.1 above a node to below its top
+            // in one increment, lifted the block, exit 0, until 2026-12-07.)
+            const double limit =
+              std::min(node.size, 0.5 * master->curvature_radius());
+            if (depth > limit)
               {
                 ++n;
                 deepest = std::max(deepest, depth / node.size);
@@ -1400,7 +1409,8 @@ namespace glide
             text << "the rigid master of contact pair '"
                  << pair.parameters->name << "' passed through " << n
                  << " slave node(s) within the increment (open after it, "
-                    "their paths relative to the master run up to "
+                    "or in contact on the master's far side; their paths "
+                    "relative to the master run up to "
                  << std::setprecision(3) << deepest
                  << " slave facet sizes deep through it)";
             why = text.str();

@@ -223,7 +223,10 @@ namespace glide
     };
     const Tensor<1, dim> a = relative(x_old, t_old);
     const Tensor<1, dim> b = relative(x_new, t_new);
-    if (!(b.norm() > radius + clearance))
+    // In contact (or inside) at the end: a passage only if the point ended
+    // on the far side of the centre (axis) from where it started, pushed
+    // out through the master's far side.
+    if (!(b.norm() > radius + clearance) && !(a * b < 0.))
       return 0.;
     // The closest approach to the centre (axis) along the path: the node
     // moves straight from x_old to x_new while the master moves by its

@@ -2290,6 +2290,30 @@ def case_mortar_slip():
               f"{formulation}: max_slip in statistics.csv")
 
 
+def case_rigid_master_overshoot():
+    """R16.3: a rigid circle moved in one increment from above a slave node
+    to below the node's level, so that the node ends inside the circle and
+    is pushed out through its top (its far side), is a passage: the step
+    fails and is cut back, and every converged step presses the block down
+    (parameters/rigid-punch.prm with a circle of radius 0.2, 0.1 above the
+    block, moved by 0.49; slave facets 0.25 and 0.125). Until 2026-12-07
+    nodes in contact at the end of the increment were not checked, and a
+    circle smaller than a slave facet was never deep enough: the step
+    converged with the block lifted (force +0.59), exit 0."""
+    for refinements in (1, 2):
+        rows, log, _ = run(scene_file("rigid-punch.prm"), "Output/Write VTU=false",
+                           f"Body block/Refinement/Global refinements={refinements}",
+                           "Contact pair punch/Rigid master/Radius=0.2", "Contact pair punch/Rigid master/Point=0, 0.3",
+                           "Contact pair punch/Rigid master/Translation=0; -0.49*t", "Load stepping/Number of steps=1",
+                           name="overshoot")
+        first = [line for line in log.splitlines() if "step failed" in line][:1]
+        check(first and "passed through" in first[0] and "far side" in first[0],
+              f"refinements {refinements}: the first increment fails, naming the passage: {first}")
+        check(rows and rows[-1]["load_factor"] == 1 and all(r["contact_punch_force_y"] < 0 for r in rows),
+              f"refinements {refinements}: every converged step presses the block down: "
+              f"{[(r['load_factor'], r['contact_punch_force_y']) for r in rows]}")
+
+
 def case_finer_master_over_the_contact_area():
     """R16.3: the warning about master facets shorter than the slave's
     takes the median over the contact area, not over the closed nodes

@@ -114,12 +114,25 @@ TEST(RigidMaster, PassageDepth)
   EXPECT_EQ(
     circle.passage_depth(Point<2>(1.2, 0.), 0., Point<2>(1.2, 0.), 0.5, 0.),
     0.);
-  // Within the clearance of the master's surface at the end (in contact):
-  // not a passage; without the clearance the same path counts (it runs
-  // through the centre).
-  EXPECT_EQ(circle.passage_depth(
-              Point<2>(1., 0.), 0., Point<2>(1., -0.5 + 1e-12), 1., 1e-9),
+  // Within the clearance of the master's surface at the end (in contact)
+  // on the side it started: not a passage, however deep the chord of its
+  // path (a quarter turn round the circle, 0.146 deep; it could slide
+  // round)...
+  EXPECT_EQ(circle.passage_depth(Point<2>(1., 1.5),
+                                 0.,
+                                 Point<2>(1. + 0.5 * std::sqrt(0.5),
+                                          2. - 0.5 * std::sqrt(0.5) - 3e-6),
+                                 1e-6,
+                                 1e-9),
             0.);
+  // ... but on the master's far side from where it started, pushed out
+  // through it: the path runs through the centre (until 2026-12-07 not
+  // counted, and a circle moved from above a node to below its top in one
+  // increment lifted the block with exit 0).
+  EXPECT_NEAR(circle.passage_depth(
+                Point<2>(1., 0.), 0., Point<2>(1., -0.5 + 1e-12), 1., 1e-9),
+              0.5,
+              1e-9);
   EXPECT_NEAR(circle.passage_depth(
                 Point<2>(1., 0.), 0., Point<2>(1., -0.5 + 1e-12), 1., 0.),
               0.5,

@@ -80,12 +80,16 @@ namespace glide
      * motion, followed in steps where it turns), less the start's depth if
      * it started inside (in contact, or
      * penetrating under penalty). 0 where the path stays outside, where the
-     * point ends not more than @p clearance outside (in contact), for a
-     * plane and for a slave inside (a hole: a point outside at its end has
-     * never been inside). A master that passed through a slave node within
-     * one increment leaves it open at its end, whether it was open or in
-     * contact before; Contact::passed_through() compares this with the
-     * slave facet size.
+     * point ends not more than @p clearance outside (in contact) on the
+     * same side of the centre (axis) as it started, for a plane and for a
+     * slave inside (a hole: a point outside at its end has never been
+     * inside). A master that passed through a slave node within one
+     * increment leaves it open at its end, whether it was open or in
+     * contact before, or, where the master went only part of the way, in
+     * contact on the master's far side, pushed out the wrong way (a circle
+     * moved from above a node to below its top in one increment lifted the
+     * block, exit 0, until 2026-12-07); Contact::passed_through() compares
+     * this with the slave facet size.
      */
     double
     passage_depth(const dealii::Point<dim> &x_old,
