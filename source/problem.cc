@@ -282,12 +282,18 @@ namespace glide
     // solution is zero at the first and the last step, which a user
     // rarely means (a scene that declares no load at all is refused).
     // Not with contact: an initial overlap loads the bodies.
+    // Also loads that act only on DoFs a displacement condition holds
+    // (their reactions take them): the same zero solution (until
+    // 2026-12-07 the warning said such loads were zero).
     if (driving_strain == 0. && scene.contact_pairs.empty())
-      pcout << "  warning: the loads and prescribed displacements are zero "
-               "at the first and the last load factor (every 'Function' of "
-               "the boundary conditions, 'Body force', rigid-body motions): "
-               "the displacements there are zero. Check the loads' "
-               "'Function' entries."
+      pcout << "  warning: the loads and prescribed displacements leave the "
+               "bodies unloaded at the first and the last load factor: the "
+               "loads ('Function' of the traction, pressure and force "
+               "conditions, 'Body force') are zero there or act only where "
+               "a displacement condition holds the nodes (its reaction then "
+               "takes them), and the prescribed displacements and rigid-body "
+               "motions are zero; the displacements there are zero. Check "
+               "the loads' 'Function' and 'Surface' entries."
             << std::endl;
     for (const auto &note : scene.unused)
       pcout << "  warning: " << note << std::endl;

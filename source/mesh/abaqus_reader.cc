@@ -107,6 +107,10 @@ namespace glide
           ++number;
           if (!text.empty() && text.back() == '\r')
             text.pop_back();
+          // A UTF-8 byte-order mark (some Windows editors write one): not
+          // part of the first keyword (it was read as a data line).
+          if (number == 1 && text.rfind("\xEF\xBB\xBF", 0) == 0)
+            text.erase(0, 3);
           const std::string t = trim(text);
           if (upper(t).rfind("*INCLUDE", 0) == 0)
             {

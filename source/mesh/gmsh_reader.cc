@@ -119,6 +119,10 @@ namespace glide
           {
             if (!l.empty() && l.back() == '\r')
               l.pop_back();
+            // A UTF-8 byte-order mark before '$MeshFormat' (some Windows
+            // editors write one).
+            if (lines.empty() && l.rfind("\xEF\xBB\xBF", 0) == 0)
+              l.erase(0, 3);
             lines.push_back(l);
           }
         content.file                  = file;

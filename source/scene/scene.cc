@@ -1616,17 +1616,33 @@ namespace glide
         scene.contact_pairs.emplace_back();
         scene.contact_pairs.back().name = n;
       }
+    // Where a value that a message names came from: the last --set of
+    // its path, else the scene file (until 2026-12-07 a range error of a
+    // value given with --set named the scene file).
+    const auto source_of = [&](const std::string &message) {
+      for (auto o = overrides.rbegin(); o != overrides.rend(); ++o)
+        if (const auto eq = o->find('='); eq != std::string::npos)
+          {
+            const std::string path = Utilities::trim(o->substr(0, eq));
+            if (!path.empty() &&
+                message.find("'" + path + "'") != std::string::npos)
+              return "Command-line option --set '" + *o + "' (scene file '" +
+                     filename + "'): ";
+          }
+      return "In scene file '" + filename + "': ";
+    };
     try
       {
         scene.parse_parameters(prm);
       }
     catch (const ExceptionBase &e)
       {
-        throw InputError("In scene file '" + filename + "': " + explain(e));
+        const std::string message = explain(e);
+        throw InputError(source_of(message) + message);
       }
     catch (const InputError &e)
       {
-        throw InputError("In scene file '" + filename + "': " + e.what());
+        throw InputError(source_of(e.what()) + e.what());
       }
     if (scene.name.empty())
       scene.name = stem;
@@ -1641,7 +1657,7 @@ namespace glide
       }
     catch (const InputError &e)
       {
-        throw InputError("In scene file '" + filename + "': " + e.what());
+        throw InputError(source_of(e.what()) + e.what());
       }
     ParameterHandler defaults;
     declare_parameters(defaults, bodies, conditions, node_sets, pairs);

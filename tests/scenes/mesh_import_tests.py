@@ -99,6 +99,38 @@ def case_gmsh_and_abaqus_bodies_balance():
     close(rows[-1]["reaction_hold_z"], 2., 1e-9, "box41.msh: the support carries the pressure on 'top'")
 
 
+def case_byte_order_mark():
+    """P1.3: a mesh file saved with a UTF-8 byte-order mark (Windows editors
+    write one) is read as without it, as scene files are (until 2026-12-07
+    an Abaqus file's first keyword was taken for a data line, and a Gmsh
+    file's '$MeshFormat' was not found). plate41.msh and parts.inp of
+    case_gmsh_and_abaqus_bodies_balance, each with the mark: the same
+    reactions."""
+    import shutil
+    import tempfile
+    work = tempfile.mkdtemp(prefix="glide-bom-")
+    try:
+        for mesh in ("plate41.msh", "parts.inp"):
+            with open(os.path.join(DATA, mesh), "rb") as f:
+                text = f.read()
+            with open(os.path.join(work, mesh), "wb") as f:
+                f.write(b"\xef\xbb\xbf" + text)
+        rows, _, _ = st.run(os.path.join(SCENES, "one-body.prm"), "Output/Write VTU=false",
+                            f"Body part/Mesh file={os.path.join(work, 'plate41.msh')}", "Boundary conditions=hold, load",
+                            "Boundary condition hold/Surface=part.bottom", "Boundary condition load/Surface=part.corner",
+                            "Boundary condition load/Type=force", "Boundary condition load/Function=0; -3*t",
+                            name="plate41_bom")
+        close(rows[-1]["reaction_hold_y"], 3., 1e-9, "plate41.msh with a byte-order mark: R = (0, 3)")
+        rows, _, _ = st.run(os.path.join(SCENES, "one-body.prm"), "Output/Write VTU=false",
+                            f"Body part/Mesh file={os.path.join(work, 'parts.inp')}", "Body part/Part=Block-1",
+                            "Boundary conditions=hold, load", "Boundary condition hold/Surface=part.Bottom",
+                            "Boundary condition load/Surface=part.Top", "Boundary condition load/Type=traction",
+                            "Boundary condition load/Function=t; -t", name="parts_bom")
+        close(rows[-1]["reaction_hold_y"], 1., 1e-9, "parts.inp with a byte-order mark: R_y = 1")
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+
 def case_z_round_off_in_2d():
     """P1.3: a 2D mesh whose generator wrote z = 1e-14 at a node (round-off
     of a 3D writer) is read as lying in z = 0 (until 2026-12-06 it was

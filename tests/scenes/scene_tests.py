@@ -2083,9 +2083,20 @@ def case_small_loads():
     # zero solution, in silence, until 2026-12-06): a warning.
     rows, log, _ = run(scene("block.prm"), "Boundary condition load/Function=0; 0", "Output/Write VTU=false",
                        name="zero")
-    check("warning: the loads and prescribed displacements are zero at the first and the last load factor" in log,
-          "zero loads: warned")
+    warning = "warning: the loads and prescribed displacements leave the bodies unloaded at the first and the last"
+    check(warning in log, "zero loads: warned")
     check(rows[-1]["reaction_bottom_y"] == 0., f"zero loads: zero reaction {rows[-1]['reaction_bottom_y']}")
+    # A load on the fixed surface only: its reaction takes it, the bodies
+    # stay unloaded (an outside trial's case: the warning said the load,
+    # -5, was zero).
+    rows, log, _ = run(scene("block.prm"), "Boundary condition load/Surface=block.bottom", "Output/Write VTU=false",
+                       name="on_fixed")
+    check(warning in log and "act only where a displacement condition holds the nodes" in log,
+          "a load on fixed nodes only: warned, and the warning names that case")
+    check(rows[-1]["reaction_bottom_y"] != 0., f"a load on fixed nodes only: taken by the reaction "
+          f"({rows[-1]['reaction_bottom_y']})")
+    rows, log, _ = run(scene("block.prm"), "Output/Write VTU=false", name="loaded")
+    check("leave the bodies unloaded" not in log, "the block as it is: no warning")
     # Geometrically nonlinear (neo-Hookean: its round-off is that of
     # F = I + H, about machine epsilon / strain = 2.2e-16 / 5e-14 = 4.4e-3
     # relative here, not that of H): solved too (R = 0 before), the
