@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Accuracy against cost of the contact discretizations (P6.2; issue 3,
-section 7): one command that runs the studies, writes
-doc/accuracy-vs-cost.md and its plots (doc/accuracy-vs-cost-*.png).
+section 7): one command that runs the studies and writes the report
+(doc/accuracy-vs-cost.generated.md, see below) and its plots
+(doc/accuracy-vs-cost-*.png).
 
 What it measures today: Hertz line contact (Case A) with node-to-surface
 contact against a rigid flat, element degree 1 and 2, five meshes each:

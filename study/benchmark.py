@@ -6,16 +6,20 @@ at about 1e5 and 5e5 DoFs, each with the direct solver (MUMPS) and with
 GMRES + ML AMG. Every number comes from the run's own timings.csv.
 
 Usage: python3 study/benchmark.py --glide build/glide [--quick] [--markdown FILE]
+
+A failed run (or a missing binary) stops the benchmark with exit status 2;
+no row is printed for it and the --markdown file is not written.
 """
 import argparse
 import csv
 import os
 import platform
-import subprocess
 import sys
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import study_runs  # noqa: E402
 
 # (label, dimension, subdivisions per side, global refinements)
 CASES = [
@@ -33,10 +37,12 @@ def run(glide, dim, n, refinements, solver, out):
            "--set", "Body body/Block/Subdivisions=" + ", ".join([str(n)] * dim),
            "--set", f"Body body/Refinement/Global refinements={refinements}",
            "--set", f"Linear solver/Type={solver}"]
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    if p.returncode != 0:
+    p = study_runs.run(cmd)
+    if p.returncode != 0:  # no contact: even a failed load step is a failure here
         print(p.stdout[-3000:], p.stderr[-3000:])
-        sys.exit(f"benchmark run failed: {' '.join(cmd)}")
+        raise study_runs.StudyError(f"{study_runs.command_text(cmd)} failed ({study_runs.describe(p)})")
+    if not os.path.exists(os.path.join(out, name, "timings.csv")):
+        raise study_runs.StudyError(f"{study_runs.command_text(cmd)} exited 0 without writing timings.csv")
     with open(os.path.join(out, name, "timings.csv")) as f:
         t = {r["quantity"]: r["value"] for r in csv.DictReader(f)}
     g = lambda k: float(t.get(k, 0.0))
@@ -56,6 +62,15 @@ def main():
     ap.add_argument("--quick", action="store_true", help="only the two smaller sizes")
     ap.add_argument("--markdown", help="also write the table to this file")
     a = ap.parse_args()
+    study_runs.check_binary(os.path.abspath(a.glide))
+    study_runs.stop_children_on_signals()
+    try:
+        benchmark(a)
+    except study_runs.StudyError as e:
+        study_runs.report_study_error(e)
+
+
+def benchmark(a):
     out = tempfile.mkdtemp(prefix="glide-bench-")
     lines = ["| case | solver | DoFs | assembly [s] | linear solver [s] (of which set-up) | total [s] | peak memory [MiB] |",
              "|---|---|---:|---:|---:|---:|---:|"]

@@ -31,15 +31,17 @@ Usage: python3 study/contact_3d.py --glide build/glide [--sizes 21,32]
        python3 study/contact_3d.py --glide build/glide --scenes-2d --processes 1,2
 """
 import argparse
+from concurrent.futures import ThreadPoolExecutor
 import csv
 import math
 import os
 import platform
-import subprocess
 import sys
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import study_runs  # noqa: E402
 SCENE = os.path.join(HERE, "..", "parameters", "hertz-3d-elastic.prm")
 
 RUNS = {
@@ -77,27 +79,34 @@ def command(glide, n, key, out, processes=1, tag=""):
 
 
 def run(glide, n, key, out, processes=1):
+    """The run's result, or glide's reason (a string) if a load step
+    failed; any other failure raises study_runs.StudyError."""
     cmd, name = command(glide, n, key, out, processes)
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    if p.returncode != 0:
+    p = study_runs.run(cmd)
+    reason = study_runs.outcome(p, study_runs.command_text(cmd))
+    if reason is not None:
         print(p.stdout[-3000:], p.stderr[-3000:])
-        return None
+        return reason
     return result(n, key, out, name)
 
 
 def concurrent(glide, n, key, out, copies):
     """@p copies one-process runs at the same time (the machine's
-    throughput with every core busy on independent work); their results."""
-    started = []
-    for c in range(copies):
-        cmd, name = command(glide, n, key, out, 1, f"-copy{c}")
-        started.append((subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True), name))
+    throughput with every core busy on independent work); their results,
+    or glide's reason if a load step of one failed."""
+    commands = [command(glide, n, key, out, 1, f"-copy{c}") for c in range(copies)]
+    with ThreadPoolExecutor(max_workers=copies) as pool:
+        try:
+            done = list(pool.map(lambda c: study_runs.run(c[0]), commands))
+        except BaseException:
+            study_runs.stop_all()
+            raise
     results = []
-    for p, name in started:
-        _, err = p.communicate()
-        if p.returncode != 0:
-            print(err[-3000:])
-            return None
+    for p, (cmd, name) in zip(done, commands):
+        reason = study_runs.outcome(p, study_runs.command_text(cmd))
+        if reason is not None:
+            print(p.stderr[-3000:])
+            return reason
         results.append(result(n, key, out, name))
     return results
 
@@ -105,6 +114,9 @@ def concurrent(glide, n, key, out, copies):
 def result(n, key, out, name):
     formulation, solver, _ = RUNS[key]
     d = os.path.join(out, name)
+    for f in ("timings.csv", "statistics.csv"):
+        if not os.path.exists(os.path.join(d, f)):
+            raise study_runs.StudyError(f"the run {name} exited 0 without writing {os.path.join(d, f)}")
     with open(os.path.join(d, "timings.csv")) as f:
         t = {r["quantity"]: r["value"] for r in csv.DictReader(f)}
     with open(os.path.join(d, "statistics.csv")) as f:
@@ -157,6 +169,15 @@ def main():
                     help="with --processes 1,P: also P one-process runs at once (the machine's own limit "
                          "on the speed-up)")
     a = ap.parse_args()
+    study_runs.check_binary(a.glide)
+    study_runs.stop_children_on_signals()
+    try:
+        return tables(a)
+    except study_runs.StudyError as e:
+        study_runs.report_study_error(e)
+
+
+def tables(a):
     processes = [int(x) for x in a.processes.split(",")]
     if a.scenes_2d:
         return table_2d(a, processes)
@@ -171,8 +192,8 @@ def main():
     for n in [int(x) for x in a.sizes.split(",")]:
         for key in a.runs.split(","):
             r = run(a.glide, n, key, out)
-            if r is None:
-                line = f"| {n} | {RUNS[key][0]} | {RUNS[key][1]} | failed | | | | | | | | | | |"
+            if isinstance(r, str):
+                line = f"| {n} | {RUNS[key][0]} | {RUNS[key][1]} | did not converge: {r} | | | | | | | | | | |"
             else:
                 line = (f"| {n} | {r['formulation']} | {r['solver']} | {r['dofs']} | {r['newton']} "
                         f"({', '.join(map(str, r['per_step']))}) | {r['cut_backs']} | {r['gmres']} | "
@@ -206,8 +227,8 @@ def parallel_table(a, processes):
             first = None
             for np_ in processes:
                 r = run(a.glide, n, key, out, np_)
-                if r is None:
-                    line = f"| {n} | {RUNS[key][0]} | {RUNS[key][1]} | | {np_} | failed | | | | | | | | | |"
+                if isinstance(r, str):
+                    line = f"| {n} | {RUNS[key][0]} | {RUNS[key][1]} | | {np_} | did not converge: {r} | | | | | | | | | |"
                 else:
                     first = first or (np_, r)
                     speed = first[1]["per_iteration"] / r["per_iteration"]
@@ -223,8 +244,9 @@ def parallel_table(a, processes):
             copies = max(processes)
             if a.ceiling and first is not None and first[0] == 1 and copies > 1:
                 rs = concurrent(a.glide, n, key, out, copies)
-                if rs is None:
-                    line = f"| {n} | {RUNS[key][0]} | {RUNS[key][1]} | | {copies} x 1 at once | failed | | | | | | | | | |"
+                if isinstance(rs, str):
+                    line = (f"| {n} | {RUNS[key][0]} | {RUNS[key][1]} | | {copies} x 1 at once | did not converge: "
+                            f"{rs} | | | | | | | | | |")
                 else:
                     per = sum(x["per_iteration"] for x in rs) / copies
                     loop = sum(x["loop_per_iteration"] for x in rs) / copies
@@ -259,12 +281,17 @@ def table_2d(a, processes):
             mpi = ["mpirun", "-np", str(np_)] if np_ > 1 else []
             cmd = mpi + [a.glide, os.path.join(HERE, "..", "parameters", scene), "--set",
                          f"Output/Directory={out}", "--set", f"Scene name={name}"]
-            p = subprocess.run(cmd, capture_output=True, text=True)
-            if p.returncode != 0:
+            p = study_runs.run(cmd)
+            reason = study_runs.outcome(p, study_runs.command_text(cmd))
+            if reason is not None:
                 print(p.stdout[-3000:], p.stderr[-3000:])
-                lines.append(f"| {scene} | | {np_} | failed | | | | | | | |")
+                lines.append(f"| {scene} | | {np_} | did not converge: {reason} | | | | | | | |")
+                print(lines[-1], flush=True)
                 continue
             d = os.path.join(out, name)
+            for f in ("timings.csv", "statistics.csv"):
+                if not os.path.exists(os.path.join(d, f)):
+                    raise study_runs.StudyError(f"{study_runs.command_text(cmd)} exited 0 without writing {f}")
             with open(os.path.join(d, "timings.csv")) as f:
                 t = {r["quantity"]: r["value"] for r in csv.DictReader(f)}
             with open(os.path.join(d, "statistics.csv")) as f:

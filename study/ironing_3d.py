@@ -22,6 +22,11 @@ force's range over the mean normal force, time and peak memory.
 
 Usage: python3 study/ironing_3d.py --glide build/glide [--runs mortar,nts]
        [--output DIR] [--markdown FILE] [--steps 100] [--slab 36,12,8]
+
+Exit status 0: every run reached the end; 1: a load step of a run failed
+(its row says how far it got, glide's reason is printed); 2: the study
+failed (a missing binary, a run that failed otherwise or reached --limit):
+no row is printed for that run and --markdown is not written.
 """
 import argparse
 import csv
@@ -30,6 +35,12 @@ import os
 import subprocess
 import sys
 import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import study_runs  # noqa: E402
+
+# Peak memory of a run (its "Maximum resident set size").
+TIME = "/usr/bin/time"
 
 # Steady sliding: after 1.0 of the 3.0 slide (load factor 0.26 + 0.74 / 3).
 STEADY = 0.26 + 0.74 / 3
@@ -151,19 +162,25 @@ def run(glide, out, key, slab, die, steps, limit):
     with open(scene, "w") as f:
         f.write(SCENE.format(slab=", ".join(str(n) for n in slab), steps=steps))
     name = f"ironing3d-{key}"
-    cmd = ["/usr/bin/time", "-v", glide, scene, "--set", f"Output/Directory={out}", "--set", f"Scene name={name}",
+    cmd = [TIME, "-v", glide, scene, "--set", f"Output/Directory={out}", "--set", f"Scene name={name}",
            "--set", "Output/Write VTU=false"]
     for s in sets:
         cmd += ["--set", s]
     # The log goes to a file as the run goes (a run takes tens of minutes).
     log_file = os.path.join(out, name + ".log")
+    what = f"{study_runs.command_text(cmd[2:])} (log {log_file})"
     with open(log_file, "w") as f:
         try:
-            finished = subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT, timeout=limit).returncode == 0
+            p = study_runs.run(cmd, stdout=f, stderr=subprocess.STDOUT, timeout=limit)
         except subprocess.TimeoutExpired:
-            finished = False
+            raise study_runs.StudyError(f"{what} was stopped after the --limit of {limit} s") from None
     with open(log_file) as f:
-        log = f.read() + ("" if finished else f"\nstopped ({log_file})")
+        log = f.read()
+    # StudyError unless glide succeeded or a load step failed.
+    reason = study_runs.outcome(subprocess.CompletedProcess(cmd, p.returncode, "", log), what)
+    finished = reason is None
+    if not finished:
+        log += f"\nstopped: {reason} ({log_file})"
     d = os.path.join(out, name)
     rows = []
     if os.path.exists(os.path.join(d, "statistics.csv")):
@@ -176,6 +193,8 @@ def run(glide, out, key, slab, die, steps, limit):
             r["memory_mib"] = int(line.split()[-1]) / 1024
         if line.startswith("Degrees of freedom") or "degrees of freedom" in line.lower():
             r.setdefault("dofs_line", line.strip())
+    if finished and not (rows and os.path.exists(os.path.join(d, "timings.csv"))):
+        raise study_runs.StudyError(f"{what} exited 0 without writing its statistics and timings")
     if os.path.exists(os.path.join(d, "timings.csv")):
         with open(os.path.join(d, "timings.csv")) as f:
             t = {x["quantity"]: x["value"] for x in csv.DictReader(f)}
@@ -223,6 +242,16 @@ def main():
     a.add_argument("--die", default="48,13", help="die cells around and along its half width")
     a.add_argument("--limit", type=float, default=None, help="seconds per run")
     args = a.parse_args()
+    study_runs.check_binary(os.path.abspath(args.glide))
+    study_runs.check_binary(TIME, "GNU time (for the peak memory)")
+    study_runs.stop_children_on_signals()
+    try:
+        return study(args)
+    except study_runs.StudyError as e:
+        study_runs.report_study_error(e)
+
+
+def study(args):
     out = args.output or tempfile.mkdtemp(prefix="glide-ironing3d-")
     slab = [int(x) for x in args.slab.split(",")]
     die = [int(x) for x in args.die.split(",")]

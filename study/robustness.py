@@ -10,6 +10,10 @@ problems.
 
     robustness.py --glide build/glide [--levels 0,1,2] [--output DIR]
 
+A run whose load step fails (glide's exit status 2) is listed as not
+converged; any other failure (input, internal or I/O error, a signal, the
+time limit of a run, a missing binary) stops the study with exit status 2.
+
 Geometry in units of the cylinder radius R: cylinder centre (0, R), block
 [-2R, 2R] x [-2R, 0] fixed at its bottom, load P per unit length as a
 traction on the cylinder's flat top; the load is chosen so that the Hertz
@@ -27,6 +31,9 @@ import subprocess
 import sys
 import tempfile
 import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import study_runs  # noqa: E402
 
 # Formulations of the robustness matrix: name -> contact pair settings.
 FORMULATIONS = {
@@ -165,7 +172,7 @@ def run_case(glide, output, name, threads=None, extra=(), timeout=300, **kw):
         env["DEAL_II_NUM_THREADS"] = str(threads)
     start = time.time()
     try:
-        p = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=timeout)
+        p = study_runs.run(cmd, env=env, timeout=timeout)
     except subprocess.TimeoutExpired:
         # Recorded as not converged (the study lists it so).
         p = subprocess.CompletedProcess(cmd, -1, "", f"stopped after {timeout} s")
@@ -176,7 +183,7 @@ def run_case(glide, output, name, threads=None, extra=(), timeout=300, **kw):
         with open(stats) as f:
             rows = list(csv.DictReader(f))
     result = dict(ref)
-    result.update(status=p.returncode, log=p.stdout + p.stderr, rows=rows, wall=wall,
+    result.update(status=p.returncode, log=p.stdout + p.stderr, rows=rows, wall=wall, process=p,
                   converged=p.returncode == 0,
                   iterations=[int(r["kinsol_iterations"]) for r in rows],
                   cut_backs=int(rows[-1]["cut_backs"]) if rows else None)
@@ -190,6 +197,20 @@ def run_case(glide, output, name, threads=None, extra=(), timeout=300, **kw):
         result["force"] = float(rows[-1]["contact_hertz_force_y"])
         result["p0_h"] = max(float(n["CPRESS"]) for n in nodes)
     return result
+
+
+def study_case(glide, output, name, **kw):
+    """run_case for the study: a run that converged with its contact
+    output, or one whose load step failed (glide's exit status 2); any
+    other failure raises study_runs.StudyError."""
+    r = run_case(glide, output, name, **kw)
+    what = f"glide on the scene {os.path.join(output, name + '.prm')}"
+    if r["status"] == -1:
+        raise study_runs.StudyError(f"{what} was stopped after the time limit of {kw.get('timeout', 300)} s")
+    study_runs.outcome(r["process"], what)
+    if r["converged"] and "nodes" not in r:
+        raise study_runs.StudyError(f"{what} exited 0 without its statistics and contact output")
+    return r
 
 
 def zigzag(nodes, a, slave_x="x"):
@@ -237,7 +258,7 @@ def main():
     parser.add_argument("--glide", required=True)
     parser.add_argument("--levels", default="0,1,2")
     parser.add_argument("--formulations", default=",".join(FORMULATIONS))
-    parser.add_argument("--output", default=tempfile.mkdtemp(prefix="glide-robustness-"))
+    parser.add_argument("--output", help="directory of the runs (default: a new temporary one)")
     parser.add_argument("--zigzag-levels", default="0,1,2,3",
                         help="levels of the two-materials Hertz study of the nodal pressure zigzag")
     parser.add_argument("--mesh-levels", default="1,2", help="levels of the facet-size study")
@@ -246,12 +267,18 @@ def main():
                              "study of quadratic elements against the slave and master facet sizes")
     args = parser.parse_args()
     levels = [int(x) for x in args.levels.split(",")]
-    if args.part in ("all", "zigzag"):
-        zigzag_study(args)
-    if args.part in ("all", "matrix"):
-        matrix_study(args, levels)
-    if args.part in ("all", "meshes"):
-        mesh_study(args)
+    study_runs.check_binary(args.glide)
+    study_runs.stop_children_on_signals()
+    args.output = args.output or tempfile.mkdtemp(prefix="glide-robustness-")
+    try:
+        if args.part in ("all", "zigzag"):
+            zigzag_study(args)
+        if args.part in ("all", "matrix"):
+            matrix_study(args, levels)
+        if args.part in ("all", "meshes"):
+            mesh_study(args)
+    except study_runs.StudyError as e:
+        study_runs.report_study_error(e)
 
 
 def zigzag_study(args):
@@ -267,7 +294,7 @@ def zigzag_study(args):
         for f in ("0", "0.2"):
             for level in [int(x) for x in args.zigzag_levels.split(",")]:
                 name = f"zigzag-q{degree}-f{f}-{level}"
-                r = run_case(args.glide, args.output, name, formulation=f"nts-finite-f{f}", level=level,
+                r = study_case(args.glide, args.output, name, formulation=f"nts-finite-f{f}", level=level,
                              degree=degree, ratio=3.0, slave="block")
                 if "nodes" not in r:
                     print(f"| {degree} | {f} | {level} | - | did not converge | - | - | {r['wall']:.1f} |", flush=True)
@@ -309,7 +336,7 @@ def mesh_study(args):
                 if refine:
                     extra.append(f"Body {refine[0]}/Refinement/Local refinements={3 + level + refine[1]}")
                 name = f"meshes-{formulation}-q{degree}-{re.sub('[^a-z0-9]+', '-', label)}-{level}"
-                r = run_case(args.glide, args.output, name, extra=extra, formulation=formulation,
+                r = study_case(args.glide, args.output, name, extra=extra, formulation=formulation,
                              level=level, degree=degree, **kw)
                 if "nodes" not in r:
                     print(f"| {formulation} | {degree} | {label} | {level} | did not converge | - | - | - | - | "
@@ -338,7 +365,7 @@ def matrix_study(args, levels):
         for label, kw in cases:
             for level in levels:
                 name = f"{formulation}-{re.sub('[^a-z0-9]+', '-', label.lower())}-{level}"
-                r = run_case(args.glide, args.output, name, formulation=formulation, level=level, **kw)
+                r = study_case(args.glide, args.output, name, formulation=formulation, level=level, **kw)
                 its = r["iterations"]
                 p = f"{r['p0_h'] / r['p0']:.4f}" if "p0_h" in r else "-"
                 if not r["converged"]:

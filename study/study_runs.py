@@ -32,10 +32,10 @@ class StudyError(Exception):
     converge: the study cannot publish anything from it."""
 
 
-def check_binary(path):
+def check_binary(path, what="the glide binary"):
     """Stop (exit status STUDY_FAILED) unless path is an executable file."""
     if not os.path.isfile(path) or not os.access(path, os.X_OK):
-        print(f"{os.path.basename(sys.argv[0])}: the glide binary {path!r} "
+        print(f"{os.path.basename(sys.argv[0])}: {what} {path!r} "
               f"{'is not executable' if os.path.isfile(path) else 'does not exist'}; nothing was run or written",
               file=sys.stderr)
         sys.exit(STUDY_FAILED)

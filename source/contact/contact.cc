@@ -481,7 +481,41 @@ namespace glide
                       p.master + "' has no faces.");
           }
         else
-          master = std::make_unique<RigidMaster<dim>>(p, path);
+          {
+            master = std::make_unique<RigidMaster<dim>>(p, path);
+            // Axisymmetric: a rigid circle is the section of a sphere
+            // (centre on the axis) or of a torus, which lies wholly at
+            // r >= 0. One that crosses the axis off its centre is neither:
+            // its normal at the axis has a radial part that no surface of
+            // revolution has (until 2026-12-07 accepted: a circle centred
+            // at r = -0.3 put a radial force on the axis node, exit 0).
+            if (dim == 2 && p.master_type == MasterType::rigid_circle &&
+                scene.analysis == AnalysisType::axisymmetric)
+              for (const double t :
+                   {0., 1. / scene.load_stepping.number_of_steps, 1.})
+                {
+                  Point<dim> centre;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    centre[d] = p.point[d];
+                  const double r         = master->move(centre, 0., t)[0],
+                               tolerance = 1e-10 * p.radius;
+                  if (std::abs(r) <= tolerance || r >= p.radius - tolerance)
+                    continue;
+                  std::ostringstream text;
+                  text << "Parameter '" << path
+                       << "/Rigid master': in an axisymmetric scene a rigid "
+                          "circle is the section of a sphere (its centre on "
+                          "the axis, x = r = 0) or of a torus (wholly at "
+                          "r >= 0: its centre at r >= 'Radius'); at load "
+                          "factor "
+                       << t << " its centre is at r = " << r
+                       << " with 'Radius' = " << p.radius
+                       << ", so it crosses the axis. Check 'Point' (x = r of "
+                          "the centre), 'Radius', 'Translation' and "
+                          "'Rotation'.";
+                  throw InputError(text.str());
+                }
+          }
 
         for (const auto &name : Utilities::split_string_list(p.slave, ','))
           for (const auto &body : scene.bodies)

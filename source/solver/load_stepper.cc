@@ -7,6 +7,25 @@
 
 namespace glide
 {
+  namespace
+  {
+    /// The advice where the last attempt failed on an inverted element:
+    /// at the smallest increment that is the mesh, not the step size (the
+    /// message advised ever smaller steps; an outside trial's rigid circle
+    /// pressed 0.98 of its radius into a neo-Hookean block).
+    bool
+    inverted(const std::string &reason)
+    {
+      return reason.find("inverted element") != std::string::npos;
+    }
+    constexpr const char *inverted_advice =
+      "an element turned inside out at the smallest increment tried, so the "
+      "mesh most likely cannot follow the deformation at this load: refine "
+      "it where the bodies deform most, or end the loading before this load "
+      "factor (smaller increments help only if the last converged step was "
+      "far from it: 'Load stepping/Number of steps', 'Maximum cut-backs')";
+  } // namespace
+
   LoadStepper::LoadStepper(const LoadSteppingParameters &parameters)
     : parameters(parameters)
     , nominal(1. / parameters.number_of_steps)
@@ -48,12 +67,15 @@ namespace glide
     if (n_step_cut_backs >= parameters.maximum_cut_backs)
       throw std::runtime_error(
         step + " failed after " + std::to_string(n_step_cut_backs) +
-        " cut-backs (the log above says why each attempt failed; if its "
-        "residuals were still falling, raise 'Nonlinear solver/Maximum "
-        "iterations', otherwise take smaller steps, 'Load stepping/Number "
-        "of steps', or allow more cut-backs, 'Load stepping/Maximum "
-        "cut-backs'): " +
-        reason);
+        " cut-backs (the log above says why each attempt failed; " +
+        (inverted(reason) ?
+           std::string(inverted_advice) :
+           std::string(
+             "if its residuals were still falling, raise 'Nonlinear "
+             "solver/Maximum iterations', otherwise take smaller steps, "
+             "'Load stepping/Number of steps', or allow more cut-backs, "
+             "'Load stepping/Maximum cut-backs'")) +
+        "): " + reason);
     // The floor, with a margin for the rounding of repeated halving.
     if (dt <= dt_min * (1. + 1e-9))
       {
@@ -65,9 +87,11 @@ namespace glide
              << " with the smallest increment the scene allows (" << dt_min
              << " = 1 / 'Number of steps' x 'Cut-back factor' ^ 'Maximum "
                 "cut-backs'): "
-             << reason.substr(0, notes)
-             << "; raise 'Load stepping/Maximum cut-backs' or 'Number of "
-                "steps' if smaller increments should be tried"
+             << reason.substr(0, notes) << "; "
+             << (inverted(reason) ?
+                   inverted_advice :
+                   "raise 'Load stepping/Maximum cut-backs' or 'Number of "
+                   "steps' if smaller increments should be tried")
              << (notes == std::string::npos ? std::string() :
                                               reason.substr(notes));
         throw std::runtime_error(text.str());

@@ -121,3 +121,61 @@ TEST(LoadStepper, IncrementNeverFallsBelowTheFloor)
   EXPECT_TRUE(ended) << "the run ends instead of going on forever";
   EXPECT_LT(stepper.time(), 1.);
 }
+
+// A step whose last attempt inverts an element at the smallest increment:
+// the message says the mesh cannot follow, not only "smaller steps" (an
+// outside trial's deep indentation; until 2026-12-07 it advised more
+// cut-backs only). Other reasons keep the step-size advice.
+TEST(LoadStepper, InvertedElementAtTheFloorBlamesTheMesh)
+{
+  const std::string inverted = "inverted element (det F = -0.8 <= 0) in the "
+                               "neo-Hookean material; the load step is too "
+                               "large";
+  for (const unsigned int cut_backs : {0u, 2u})
+    for (const bool by_inversion : {true, false})
+      {
+        LoadStepper stepper(parameters(1, cut_backs, 0.5));
+        std::string message;
+        try
+          {
+            for (unsigned int i = 0; i <= cut_backs; ++i)
+              {
+                stepper.begin_step();
+                stepper.reject(by_inversion ? inverted : "stalled");
+              }
+          }
+        catch (const std::runtime_error &e)
+          {
+            message = e.what();
+          }
+        EXPECT_EQ(message.find("the mesh most likely cannot follow the "
+                               "deformation at this load") != std::string::npos,
+                  by_inversion)
+          << message;
+        EXPECT_NE(message.find(by_inversion ? "inverted element" : "stalled"),
+                  std::string::npos)
+          << message;
+      }
+  // At the floor of the increment (steps that converge only after two
+  // cut-backs, as in IncrementNeverFallsBelowTheFloor).
+  LoadStepper stepper(parameters(10, 3, 0.5));
+  std::string message;
+  for (unsigned int k = 0; k < 1000 && message.empty(); ++k)
+    try
+      {
+        stepper.begin_step();
+        stepper.reject(inverted);
+        stepper.begin_step();
+        stepper.reject(inverted);
+        stepper.begin_step();
+        stepper.accept();
+      }
+    catch (const std::runtime_error &e)
+      {
+        message = e.what();
+      }
+  EXPECT_NE(message.find("smallest increment"), std::string::npos) << message;
+  EXPECT_NE(message.find("the mesh most likely cannot follow"),
+            std::string::npos)
+    << message;
+}
