@@ -726,22 +726,39 @@ namespace glide
         // is made consistent, as deal.II's GridIn does.
         // All cells one way or all the other: a cell numbered against
         // the others cannot be told from one folded over its neighbours.
-        bool positive = false, negative = false;
-        for (const auto &cell : cells)
+        // The message names how many go each way and the centre of the
+        // first cell of the smaller group (it named no cell, and its
+        // advice was for 2D only, until 2026-12-07).
+        std::array<std::vector<unsigned int>, 2> way; // positive, negative
+        for (unsigned int c = 0; c < cells.size(); ++c)
           {
-            std::vector<CellData<dim>> one{cell};
+            std::vector<CellData<dim>> one{cells[c]};
             GridTools::invert_all_negative_measure_cells(vertices, one);
-            (one.front().vertices == cell.vertices ? positive : negative) =
-              true;
+            way[one.front().vertices == cells[c].vertices ? 0 : 1].push_back(c);
           }
-        require(!(positive && negative),
-                "Mesh file '" + mesh.file +
-                  "': some of its cells are numbered clockwise and some "
-                  "counterclockwise (or a cell is folded over its "
-                  "neighbours); glide reads a mesh whose cells all go one "
-                  "way round. In Gmsh, give all surfaces the same "
-                  "orientation (e.g. 'Reverse Surface' on the others) and "
-                  "mesh again.");
+        if (!way[0].empty() && !way[1].empty())
+          {
+            const auto &fewer = way[0].size() < way[1].size() ? way[0] : way[1];
+            Point<dim>  centre;
+            for (const auto v : cells[fewer.front()].vertices)
+              centre += vertices[v] / static_cast<double>(
+                                        cells[fewer.front()].vertices.size());
+            std::ostringstream text;
+            text << "Mesh file '" << mesh.file << "': " << way[0].size()
+                 << " of its cells are numbered one way round and "
+                 << way[1].size()
+                 << " the other (or are folded over their neighbours), e.g. "
+                    "the cell with centre ("
+                 << centre
+                 << "); glide reads a mesh whose cells all go one way round. "
+                    "In Gmsh, give all "
+                 << (dim == 2 ? "surfaces" : "volumes")
+                 << " of the body the same orientation (e.g. 'ReverseMesh "
+                 << (dim == 2 ? "Surface" : "Volume")
+                 << "{...};' in the .geo file for the others, or build them "
+                    "from consistently oriented geometry) and mesh again.";
+            throw InputError(text.str());
+          }
         GridTools::invert_all_negative_measure_cells(vertices, cells);
         GridTools::consistently_order_cells(cells);
         tria.create_triangulation(vertices, cells, subcell);
