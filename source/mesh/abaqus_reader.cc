@@ -720,14 +720,19 @@ namespace glide
                             "' is not a node line (id, x, y" +
                             (dim == 3 ? ", z" : "") +
                             "); a keyword line starts with '*'.");
-                  require(items.size() >= 1 + dim && items.size() <= 4,
-                          where(d) + ": a node line needs its id and " +
-                            std::to_string(dim) + " coordinates (id, x, y" +
-                            (dim == 3 ? ", z" : "") + ").");
+                  // Coordinates left out at the end of the line, or left
+                  // blank, are 0, as in Abaqus (until 2026-12-07 such lines
+                  // were refused).
+                  require(items.size() <= 4,
+                          where(d) + ": a node line has its id and up to " +
+                            "3 coordinates (id, x, y" +
+                            (dim == 3 ? ", z" : "") +
+                            "; coordinates left out are 0).");
                   const long            id = to_id(items[0], d, "a node id");
                   MeshFileContent::Node node;
                   for (unsigned int c = 1; c < items.size(); ++c)
-                    node.x[c - 1] = to_double(items[c], d, "a coordinate");
+                    if (!items[c].empty())
+                      node.x[c - 1] = to_double(items[c], d, "a coordinate");
                   node.line       = d.number;
                   const auto prev = s.node_lines.find(id);
                   require(prev == s.node_lines.end(),

@@ -131,6 +131,24 @@ def case_byte_order_mark():
         shutil.rmtree(work, ignore_errors=True)
 
 
+def case_omitted_coordinates():
+    """P1.3: Abaqus node lines whose trailing coordinates are left out, or
+    left blank, have 0 there, as in Abaqus (until 2026-12-07 refused: 'a
+    node line needs its id and 2 coordinates'). omitted_coordinates.inp
+    is two_quads.inp (2 x 1) written so; held on the rest of the boundary,
+    traction (0, -1) on its top SS2 of length 2: R_y = 2, and the same
+    reactions as two_quads.inp to round-off."""
+    loads = ("Boundary conditions=hold, load", "Boundary condition hold/Surface=part.unnamed",
+             "Boundary condition load/Surface=part.SS2", "Boundary condition load/Type=traction",
+             "Boundary condition load/Function=0.5*t; -t")
+    rows, _, _ = one_body("omitted_coordinates.inp", *loads, name="omitted")
+    reference, _, _ = one_body(os.path.join("..", "two_quads.inp"), *loads, name="written")
+    close(rows[-1]["reaction_hold_y"], 2., 1e-9, "coordinates left out: the support carries the traction")
+    for c in ("x", "y"):
+        close(rows[-1][f"reaction_hold_{c}"], reference[-1][f"reaction_hold_{c}"], 1e-12,
+              f"reaction {c} as with the coordinates written")
+
+
 def case_z_round_off_in_2d():
     """P1.3: a 2D mesh whose generator wrote z = 1e-14 at a node (round-off
     of a 3D writer) is read as lying in z = 0 (until 2026-12-06 it was
