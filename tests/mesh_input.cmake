@@ -56,8 +56,14 @@ glide_mesh_error_test(abaqus_unknown_set bad_unknown_set.inp "13: 'LID' is neith
 glide_mesh_error_test(abaqus_face_id bad_face_id.inp "13: face identifier 'S5' of surface 'TOP': glide reads the faces S1 to S4")
 glide_mesh_error_test(abaqus_surface_element bad_surface_element.inp "13: surface 'TOP' names element 7, which the file does not define")
 glide_mesh_error_test(abaqus_surface_type bad_surface_type.inp "12: \\*SURFACE, TYPE=SEGMENTS is not read by glide")
-glide_mesh_error_test(abaqus_interior_surface bad_interior_surface.inp "14: face S2 of element 1 of surface 'MIDDLE' lies inside the body")
-glide_mesh_error_test(gmsh_interior_surface bad_interior_surface.msh "22: element 7 \\(2-node line, Gmsh type 1\\) of surface 'bottom' lies inside the body")
+# A surface with a face inside the body: an error where the scene names it
+# (a boundary condition on it here); a file with such a surface that the
+# scene does not use is read (scene.mesh_import_unused_interior_surface;
+# until 2026-12-07 it stopped the whole file).
+glide_mesh_error_test(abaqus_interior_surface bad_interior_surface.inp "14: face S2 of element 1 of surface 'MIDDLE' lies inside the body"
+  --set "Boundary conditions=hold" --set "Boundary condition hold/Surface=part.MIDDLE")
+glide_mesh_error_test(gmsh_interior_surface bad_interior_surface.msh "22: element 7 \\(2-node line, Gmsh type 1\\) of surface 'bottom' lies inside the body"
+  --set "Boundary conditions=hold" --set "Boundary condition hold/Surface=part.bottom")
 # Picking a body out of a file: element sets and parts that do not exist.
 glide_error_test(mesh.abaqus_unknown_element_set "Body 'part': Mesh file '.*two_bodies.inp' has no element set 'BODY3' of 2D cells; its element sets are: .*BODY1.*Body2"
   ${ONE_BODY} --set "Body part/Mesh file=${MESH_DATA}/two_bodies.inp" --set "Body part/Element set=BODY3")
@@ -89,7 +95,7 @@ glide_error_test(node_set_point_syntax "Node set left/Points' = '0, 5, x': canno
 # Abaqus second-order, part/instance and 3D files with balanced reactions;
 # a node set of points separated by ';'.
 foreach(case abaqus_two_bodies_contact gmsh_and_abaqus_bodies_balance node_set_points element_types_against_the_analysis duplicate_nodes_warned
-             mixed_node_set_and_surface z_round_off_in_2d byte_order_mark omitted_coordinates)
+             mixed_node_set_and_surface z_round_off_in_2d byte_order_mark omitted_coordinates unused_interior_surface)
   add_test(NAME scene.mesh_import_${case}
     COMMAND ${GLIDE_PYTHON} ${SCENES}/mesh_import_tests.py --glide $<TARGET_FILE:glide> --case ${case})
 endforeach()

@@ -545,20 +545,30 @@ namespace glide
     std::set<std::string>                                      surface_names;
     for (const auto &[name, surface_faces] : content.surfaces)
       {
-        unsigned int n   = 0;
-        auto         add = [&](const std::vector<unsigned int> &k,
+        unsigned int n = 0;
+        // A face inside the body makes the surface unavailable, an error
+        // only where the scene names it: a file written for another solver
+        // may have such surfaces the scene does not use (until 2026-12-07
+        // one stopped the whole file from being read).
+        std::string inside;
+        auto        add = [&](const std::vector<unsigned int> &k,
                        const MeshFileContent::Face     &f) {
           const auto it = faces.find(k);
           require(it != faces.end(),
                   file_line(content.file, f.line) + ": " + f.what +
                     " of surface '" + name +
                     "' is not a face of any cell of the body.");
-          require(it->second.uses == 1,
-                  file_line(content.file, f.line) + ": " + f.what +
-                    " of surface '" + name +
-                    "' lies inside the body, between two elements; glide's "
-                            "surfaces lie on the boundary of a body (split the body "
-                            "into two element sets, or remove the face).");
+          if (it->second.uses != 1)
+            {
+              if (inside.empty())
+                inside = file_line(content.file, f.line) + ": " + f.what +
+                         " of surface '" + name +
+                         "' lies inside the body, between two elements; "
+                                "glide's surfaces lie on the boundary of a body "
+                                "(split the body into two element sets, or remove "
+                                "the face)";
+              return;
+            }
           labels[k].insert(name);
           ++n;
         };
@@ -596,6 +606,16 @@ namespace glide
             if (!all)
               continue; // a face of another body (Gmsh)
             add(key(v), f);
+          }
+        if (!inside.empty())
+          {
+            for (auto l = labels.begin(); l != labels.end();)
+              {
+                l->second.erase(name);
+                l = l->second.empty() ? labels.erase(l) : std::next(l);
+              }
+            mesh.unavailable[name] = inside;
+            continue;
           }
         if (n > 0)
           surface_names.insert(name);

@@ -149,6 +149,20 @@ def case_omitted_coordinates():
               f"reaction {c} as with the coordinates written")
 
 
+def case_unused_interior_surface():
+    """P1.3: a surface with a face inside the body (between two elements)
+    that the scene does not use does not stop the file from being read
+    (bad_interior_surface.inp: two CPE4 side by side, *SURFACE MIDDLE on
+    the face between them; until 2026-12-07 refused as a whole); held on
+    the rest of the boundary, which MIDDLE is not part of, and loaded
+    with a body force (0, -1) over the area 2: R_y = 2. Where the scene
+    names MIDDLE it is an error (error.mesh.abaqus_interior_surface)."""
+    rows, _, _ = one_body("bad_interior_surface.inp", "Boundary conditions=hold",
+                          "Boundary condition hold/Surface=part.unnamed", "Body part/Body force=0; -t",
+                          name="interior")
+    close(rows[-1]["reaction_hold_y"], 2., 1e-9, "read, and the body force is carried")
+
+
 def case_z_round_off_in_2d():
     """P1.3: a 2D mesh whose generator wrote z = 1e-14 at a node (round-off
     of a 3D writer) is read as lying in z = 0 (until 2026-12-06 it was
