@@ -16,6 +16,9 @@ endfunction()
 
 # Element types glide does not read: refused with the type and what to do.
 glide_mesh_error_test(gmsh_triangle tri41.msh "63: element 8 \\(3-node triangle, Gmsh type 2\\): .*recombine the triangles")
+# A triangle in a surface group of a hexahedral mesh: the advice is for 3D
+# (it was to recombine a 2D body's triangles until 2026-12-07).
+glide_mesh_error_test(gmsh_triangle_in_a_3d_surface bad_triangle_in_hex.msh "78: element 33 \\(3-node triangle, Gmsh type 2\\) is in the physical group 'B_ymax': glide meshes 3D bodies with hexahedra, whose faces are quadrilaterals" ${IN_3D})
 glide_mesh_error_test(gmsh_tetrahedron tet22.msh "[0-9]+: element [0-9]+ \\(4-node tetrahedron, Gmsh type 4\\): glide meshes 3D bodies with hexahedra" ${IN_3D})
 glide_mesh_error_test(gmsh_second_order quad9.msh "[0-9]+: element [0-9]+ \\(.*second-order.*'Mesh.ElementOrder = 1'")
 glide_mesh_error_test(gmsh_3d_in_2d box41.msh "[0-9]+: element [0-9]+ \\(8-node hexahedron, Gmsh type 5\\): the scene has 'Dimension = 2'")

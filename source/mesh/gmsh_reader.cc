@@ -90,6 +90,15 @@ namespace glide
                "D mesh or set "
                "'Dimension = " +
                std::to_string(t.dim) + "'.";
+      // A triangle in a 3D mesh is a face of a surface group: the faces
+      // of hexahedra are quadrilaterals (the advice was for 2D bodies
+      // until 2026-12-07).
+      if (name.find("triangle") != std::string::npos && dim == 3)
+        return "glide meshes 3D bodies with hexahedra, whose faces are "
+               "quadrilaterals: mesh the surfaces of the volumes with "
+               "quadrilaterals too (recombined, transfinite surfaces and "
+               "volumes, or Mesh.SubdivisionAlgorithm = 2, which splits "
+               "every cell into hexahedra).";
       if (name.find("triangle") != std::string::npos)
         return "glide meshes 2D bodies with quadrilaterals: recombine the "
                "triangles into quadrilaterals ('Recombine Surface{...};' in "
