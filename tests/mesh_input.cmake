@@ -98,7 +98,8 @@ glide_error_test(node_set_point_syntax "Node set left/Points' = '0, 5, x': canno
 # Abaqus second-order, part/instance and 3D files with balanced reactions;
 # a node set of points separated by ';'.
 foreach(case abaqus_two_bodies_contact gmsh_and_abaqus_bodies_balance node_set_points element_types_against_the_analysis duplicate_nodes_warned
-             mixed_node_set_and_surface z_round_off_in_2d byte_order_mark omitted_coordinates unused_interior_surface)
+             mixed_node_set_and_surface z_round_off_in_2d byte_order_mark omitted_coordinates unused_interior_surface
+             midside_nodes_in_a_node_set)
   add_test(NAME scene.mesh_import_${case}
     COMMAND ${GLIDE_PYTHON} ${SCENES}/mesh_import_tests.py --glide $<TARGET_FILE:glide> --case ${case})
 endforeach()

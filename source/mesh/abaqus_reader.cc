@@ -1057,6 +1057,7 @@ namespace glide
                 {
                   if (e.nodes[m] == 0 || !cell.problem.empty())
                     continue; // an omitted mid-side node: a straight edge
+                  cell.midside.push_back(e.nodes[m]);
                   const auto [p, q] = edges[m - n_corners];
                   const auto &a     = c.nodes.at(e.nodes[p]).x;
                   const auto &b     = c.nodes.at(e.nodes[q]).x;

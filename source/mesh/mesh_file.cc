@@ -654,17 +654,44 @@ namespace glide
 
     // Node sets: their nodes that are vertices of the body. Mid-side nodes
     // of second-order elements are not nodes of glide's mesh.
+    std::set<long> midside;
+    for (const auto &cell : content.cells)
+      if (cell.id != 0 && in_body.count(cell.id))
+        midside.insert(cell.midside.begin(), cell.midside.end());
     for (const auto &[name, nodes] : content.node_sets)
       {
         std::vector<std::array<double, 3>> points;
-        unsigned int                       other = 0;
+        unsigned int                       other = 0, on_edges = 0;
         for (const auto n : nodes)
           if (const auto it = vertex_of.find(n); it != vertex_of.end())
             points.push_back(mesh.vertices[it->second]);
           else
-            ++other;
+            {
+              ++other;
+              on_edges += midside.count(n);
+            }
         const std::string set_name =
           surface_names.count(name) ? name + ".nodes" : name;
+        // Mid-side nodes of the body's second-order elements are not in
+        // glide's mesh: a force on the set acts on its corner nodes only,
+        // which Abaqus' *CLOAD would not (until 2026-12-07 in silence: a
+        // set of one corner and two mid-side nodes took a third of the
+        // load).
+        // Not for the node sets made of an element set's nodes (those are
+        // the whole elements', mid-side nodes included), nor for a set
+        // that a surface of the same name is made of (a scene loads the
+        // surface; its node set is '<name>.nodes').
+        if (!points.empty() && on_edges > 0 && !content.cell_sets.count(name) &&
+            !surface_names.count(name))
+          mesh.notes.push_back(
+            "the node set '" + name + "' of " + file + " has " +
+            std::to_string(on_edges) +
+            " mid-side node(s) of second-order elements, which glide does "
+            "not have (it reads the elements with their corner nodes): a "
+            "force or condition on it acts on its " +
+            std::to_string(points.size()) +
+            " corner node(s) only. Give the set corner nodes only, or load "
+            "a surface with a traction instead.");
         if (!points.empty())
           mesh.node_sets[set_name] = points;
         else

@@ -163,6 +163,32 @@ def case_unused_interior_surface():
     close(rows[-1]["reaction_hold_y"], 2., 1e-9, "read, and the body force is carried")
 
 
+def case_midside_nodes_in_a_node_set():
+    """P1.3: a node set of the file that holds mid-side nodes of
+    second-order elements, which glide reads with their corners only: a
+    force on it acts on its corner nodes only, and a set-up warning says
+    so (until 2026-12-07 in silence; Abaqus' *CLOAD would load every node
+    of the set). c3d20_mixed_node_set.inp: C3D20R block, *NSET MIXED = one
+    corner node and two mid-side nodes, a force (0, -1, 0) per node: the
+    reaction is 1, and the warning names the set, the 2 mid-side and the 1
+    corner node. The node sets of element sets (every node of the
+    elements) get no warning, nor does straight_cpe8.inp, whose *NSET TOP
+    with mid-side nodes is the node set of its surface TOP."""
+    rows, log, _ = one_body("c3d20_mixed_node_set.inp", "Dimension=3", "Analysis type=3d",
+                            "Boundary conditions=hold, load", "Boundary condition hold/Surface=part.B_ymin",
+                            "Boundary condition load/Surface=part.MIXED", "Boundary condition load/Type=force",
+                            "Boundary condition load/Function=0; -t; 0", name="midside")
+    check("the node set 'MIXED' of" in log and "has 2 mid-side node(s) of second-order elements" in log
+          and "acts on its 1 corner node(s) only" in log, "the node set with mid-side nodes is named in a warning")
+    check(log.count("mid-side node(s) of second-order") == 1, "no warning for the element sets' node sets")
+    close(rows[-1]["reaction_hold_y"], 1., 1e-9, "the force acts on the corner node only")
+    rows, log, _ = one_body("straight_cpe8.inp", "Discretization/Element degree=2", "Boundary conditions=hold, load",
+                            "Boundary condition hold/Surface=part.unnamed", "Boundary condition load/Surface=part.TOP",
+                            "Boundary condition load/Type=traction", "Boundary condition load/Function=0; -2*t",
+                            name="cpe8")
+    check("mid-side node(s) of second-order" not in log, "straight_cpe8.inp: no warning")
+
+
 def case_z_round_off_in_2d():
     """P1.3: a 2D mesh whose generator wrote z = 1e-14 at a node (round-off
     of a 3D writer) is read as lying in z = 0 (until 2026-12-06 it was

@@ -48,6 +48,9 @@ namespace glide
       long              id = 0;
       std::string       type; ///< as the file names it, for messages
       std::vector<long> nodes;
+      /// The mid-side nodes of a second-order element, which glide's mesh
+      /// does not have (for the node sets that hold some).
+      std::vector<long> midside;
       unsigned int      line = 0;
       /// Why glide cannot read this element faithfully (its type, a curved
       /// edge, an undefined node, ...); empty if it can. import_body()
