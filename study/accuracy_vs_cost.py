@@ -416,7 +416,13 @@ def write_report(path, lines, generated=None):
     """Write lines to path (through a temporary file, so that a stopped
     run leaves the old file whole), after checking that no generated line
     (default: all of them) shows a NaN."""
-    bad = [x for x in (lines if generated is None else generated) if re.search(r"(?<![\w.])nan(?!\w)", x, re.I)]
+    # Not in glide's own failure reasons ("did not finish: ... not finite
+    # (NaN or infinity)"), which a row may quote: those are results.
+    def shows_nan(line):
+        cells = line.split("|") if line.lstrip().startswith("|") else [line]
+        return any(re.search(r"(?<![\w.])nan(?!\w)", c, re.I) for c in cells
+                   if "did not finish" not in c and "failed" not in c)
+    bad = [x for x in (lines if generated is None else generated) if shows_nan(x)]
     if bad:
         raise StudyError(f"a measured value is NaN; {path} not written: {bad[0][:300]}")
     tmp = path + ".tmp"

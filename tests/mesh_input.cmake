@@ -65,6 +65,11 @@ glide_mesh_error_test(abaqus_surface_type bad_surface_type.inp "12: \\*SURFACE, 
 # until 2026-12-07 it stopped the whole file).
 glide_mesh_error_test(abaqus_interior_surface bad_interior_surface.inp "14: face S2 of element 1 of surface 'MIDDLE' lies inside the body"
   --set "Boundary conditions=hold" --set "Boundary condition hold/Surface=part.MIDDLE")
+# ... also where the file has a node set of the surface's name (named
+# 'MIDDLE.nodes' then; until 2026-12-07 'part.MIDDLE' silently reached the
+# node set instead of the surface and its error).
+glide_mesh_error_test(abaqus_interior_surface_and_node_set bad_interior_surface_node_set.inp "16: face S2 of element 1 of surface 'MIDDLE' lies inside the body"
+  --set "Boundary conditions=hold" --set "Boundary condition hold/Surface=part.MIDDLE")
 glide_mesh_error_test(gmsh_interior_surface bad_interior_surface.msh "22: element 7 \\(2-node line, Gmsh type 1\\) of surface 'bottom' lies inside the body"
   --set "Boundary conditions=hold" --set "Boundary condition hold/Surface=part.bottom")
 # Picking a body out of a file: element sets and parts that do not exist.

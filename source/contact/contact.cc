@@ -510,9 +510,9 @@ namespace glide
                           "factor "
                        << t << " its centre is at r = " << r
                        << " with 'Radius' = " << p.radius
-                       << ", so it crosses the axis. Check 'Point' (x = r of "
-                          "the centre), 'Radius', 'Translation' and "
-                          "'Rotation'.";
+                       << ", so it does not lie wholly at r >= 0. Check "
+                          "'Point' (x = r of the centre), 'Radius', "
+                          "'Translation' and 'Rotation'.";
                   throw InputError(text.str());
                 }
           }

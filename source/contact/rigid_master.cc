@@ -225,8 +225,9 @@ namespace glide
     const Tensor<1, dim> b = relative(x_new, t_new);
     // In contact (or inside) at the end: a passage only if the point ended
     // on the far side of the centre (axis) from where it started, pushed
-    // out through the master's far side.
-    if (!(b.norm() > radius + clearance) && !(a * b < 0.))
+    // out through the master's far side (checked after the path below).
+    const bool closed_at_end = !(b.norm() > radius + clearance);
+    if (closed_at_end && !(a * b < 0.))
       return 0.;
     // The closest approach to the centre (axis) along the path: the node
     // moves straight from x_old to x_new while the master moves by its
@@ -283,6 +284,13 @@ namespace glide
             closest = std::min(closest, distance(0.5 * (lo + hi)));
           }
       }
+    // In contact at the end on the far side: a passage only where the path
+    // ran through the inner half of the master. A node that slides round
+    // it in contact by more than a quarter turn in one increment (a sheet
+    // drawn over a small die radius) keeps its chord at R cos(turn / 2)
+    // from the centre, more than R / 2 for turns up to 120 degrees.
+    if (closed_at_end && !(closest < 0.5 * radius))
+      return 0.;
     // Relative to the start's depth: a closed node that the master leaves
     // (or a penalty node that started deep inside) has gone no deeper.
     return std::max(0., radius - closest - std::max(0., radius - a.norm()));

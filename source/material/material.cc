@@ -150,7 +150,8 @@ namespace glide
     if (!(J > 0.))
       throw std::runtime_error(
         "inverted element (det F = " + std::to_string(J) +
-        " <= 0) in the neo-Hookean material; the load step is too large");
+        " <= 0) in the neo-Hookean material: the load step is too large, or "
+        "the mesh cannot follow the deformation there");
     log_J   = std::log(J);
     F_inv_T = transpose(invert(F));
     P       = mu * F + (lambda * log_J - mu) * F_inv_T;

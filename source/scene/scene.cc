@@ -1623,7 +1623,11 @@ namespace glide
       for (auto o = overrides.rbegin(); o != overrides.rend(); ++o)
         if (const auto eq = o->find('='); eq != std::string::npos)
           {
-            const std::string path = Utilities::trim(o->substr(0, eq));
+            // Each part trimmed, as apply_overrides() reads the path.
+            std::string path;
+            for (const auto &part :
+                 Utilities::split_string_list(o->substr(0, eq), '/'))
+              path += (path.empty() ? "" : "/") + part;
             if (!path.empty() &&
                 message.find("'" + path + "'") != std::string::npos)
               return "Command-line option --set '" + *o + "' (scene file '" +

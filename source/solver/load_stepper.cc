@@ -68,7 +68,7 @@ namespace glide
       throw std::runtime_error(
         step + " failed after " + std::to_string(n_step_cut_backs) +
         " cut-backs (the log above says why each attempt failed; " +
-        (inverted(reason) ?
+        (inverted(reason) && n_step_cut_backs > 0 ?
            std::string(inverted_advice) :
            std::string(
              "if its residuals were still falling, raise 'Nonlinear "

@@ -2182,7 +2182,7 @@ def case_version():
     if m is None:
         return
     revision = m.group(1).removesuffix("-dirty")
-    if shutil.which("git") and os.path.isdir(os.path.join(ROOT, ".git")):
+    if shutil.which("git") and os.path.exists(os.path.join(ROOT, ".git")):  # a file in a worktree
         known = subprocess.run(["git", "-C", ROOT, "cat-file", "-e", revision + "^{commit}"],
                                capture_output=True).returncode == 0
         check(known, f"the revision '{revision}' is a commit of {ROOT}")

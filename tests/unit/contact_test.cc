@@ -115,9 +115,8 @@ TEST(RigidMaster, PassageDepth)
     circle.passage_depth(Point<2>(1.2, 0.), 0., Point<2>(1.2, 0.), 0.5, 0.),
     0.);
   // Within the clearance of the master's surface at the end (in contact)
-  // on the side it started: not a passage, however deep the chord of its
-  // path (a quarter turn round the circle, 0.146 deep; it could slide
-  // round)...
+  // on the side it started: not a passage (an eighth of a turn round the
+  // circle, its chord 0.038 deep; it could slide round)...
   EXPECT_EQ(circle.passage_depth(Point<2>(1., 1.5),
                                  0.,
                                  Point<2>(1. + 0.5 * std::sqrt(0.5),
@@ -125,6 +124,19 @@ TEST(RigidMaster, PassageDepth)
                                  1e-6,
                                  1e-9),
             0.);
+  // ... nor on the far side after sliding round in contact by 100 degrees
+  // (its chord 0.32 from the centre, outside the inner half; the circle
+  // moves by 1e-6 only) ...
+  {
+    const double turn = 100. * numbers::PI / 180.;
+    EXPECT_EQ(circle.passage_depth(Point<2>(1., 1.5),
+                                   0.,
+                                   Point<2>(1. + 0.5 * std::sin(turn),
+                                            2. - 3e-6 - 0.5 * std::cos(turn)),
+                                   1e-6,
+                                   1e-9),
+              0.);
+  }
   // ... but on the master's far side from where it started, pushed out
   // through it: the path runs through the centre (until 2026-12-07 not
   // counted, and a circle moved from above a node to below its top in one

@@ -129,8 +129,9 @@ TEST(LoadStepper, IncrementNeverFallsBelowTheFloor)
 TEST(LoadStepper, InvertedElementAtTheFloorBlamesTheMesh)
 {
   const std::string inverted = "inverted element (det F = -0.8 <= 0) in the "
-                               "neo-Hookean material; the load step is too "
-                               "large";
+                               "neo-Hookean material: the load step is too "
+                               "large, or the mesh cannot follow the "
+                               "deformation there";
   for (const unsigned int cut_backs : {0u, 2u})
     for (const bool by_inversion : {true, false})
       {
@@ -148,9 +149,11 @@ TEST(LoadStepper, InvertedElementAtTheFloorBlamesTheMesh)
           {
             message = e.what();
           }
+        // Without a cut-back (Maximum cut-backs = 0) only the nominal
+        // step was tried: the step-size advice.
         EXPECT_EQ(message.find("the mesh most likely cannot follow the "
                                "deformation at this load") != std::string::npos,
-                  by_inversion)
+                  by_inversion && cut_backs > 0)
           << message;
         EXPECT_NE(message.find(by_inversion ? "inverted element" : "stalled"),
                   std::string::npos)
