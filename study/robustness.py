@@ -171,11 +171,14 @@ def run_case(glide, output, name, threads=None, extra=(), timeout=300, **kw):
     if threads:
         env["DEAL_II_NUM_THREADS"] = str(threads)
     start = time.time()
+    timed_out = False
     try:
         p = study_runs.run(cmd, env=env, timeout=timeout)
     except subprocess.TimeoutExpired:
-        # Recorded as not converged (the study lists it so).
-        p = subprocess.CompletedProcess(cmd, -1, "", f"stopped after {timeout} s")
+        # Recorded as not converged (the study lists it so); told apart by
+        # timed_out, not by the status (-1 is also a run stopped by SIGHUP).
+        timed_out = True
+        p = subprocess.CompletedProcess(cmd, None, "", f"stopped after {timeout} s")
     wall = time.time() - start
     rows = []
     stats = os.path.join(output, name, "statistics.csv")
@@ -183,7 +186,8 @@ def run_case(glide, output, name, threads=None, extra=(), timeout=300, **kw):
         with open(stats) as f:
             rows = list(csv.DictReader(f))
     result = dict(ref)
-    result.update(status=p.returncode, log=p.stdout + p.stderr, rows=rows, wall=wall, process=p,
+    result.update(status=p.returncode, timed_out=timed_out, log=p.stdout + p.stderr, rows=rows, wall=wall,
+                  process=p,
                   converged=p.returncode == 0,
                   iterations=[int(r["kinsol_iterations"]) for r in rows],
                   cut_backs=int(rows[-1]["cut_backs"]) if rows else None)
@@ -205,7 +209,7 @@ def study_case(glide, output, name, **kw):
     other failure raises study_runs.StudyError."""
     r = run_case(glide, output, name, **kw)
     what = f"glide on the scene {os.path.join(output, name + '.prm')}"
-    if r["status"] == -1:
+    if r["timed_out"]:
         raise study_runs.StudyError(f"{what} was stopped after the time limit of {kw.get('timeout', 300)} s")
     study_runs.outcome(r["process"], what)
     if r["converged"] and "nodes" not in r:

@@ -489,11 +489,14 @@ namespace glide
             // its normal at the axis has a radial part that no surface of
             // revolution has (until 2026-12-07 accepted: a circle centred
             // at r = -0.3 put a radial force on the axis node, exit 0).
+            // Checked along the whole motion, at 1000 load factors (a
+            // cut-back may stop at any; until 2026-12-07 at 0, the first
+            // step's and 1 only).
             if (dim == 2 && p.master_type == MasterType::rigid_circle &&
                 scene.analysis == AnalysisType::axisymmetric)
-              for (const double t :
-                   {0., 1. / scene.load_stepping.number_of_steps, 1.})
+              for (unsigned int k = 0; k <= 1000; ++k)
                 {
+                  const double t = k / 1000.;
                   Point<dim> centre;
                   for (unsigned int d = 0; d < dim; ++d)
                     centre[d] = p.point[d];

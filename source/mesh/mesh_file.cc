@@ -684,13 +684,14 @@ namespace glide
         // which Abaqus' *CLOAD would not (until 2026-12-07 in silence: a
         // set of one corner and two mid-side nodes took a third of the
         // load).
-        // Not for the node sets made of an element set's nodes (those are
-        // the whole elements', mid-side nodes included), nor for a set
-        // that a surface of the same name is made of (a scene loads the
+        // Named in the log where the scene uses the set (mesh_notes() in
+        // problem.cc). Not for the node sets made of an element set's nodes
+        // (those are the whole elements', mid-side nodes included), nor for a
+        // set that a surface of the same name is made of (a scene loads the
         // surface; its node set is '<name>.nodes').
         if (!points.empty() && on_edges > 0 && !content.cell_sets.count(name) &&
             !surface_names.count(name))
-          mesh.notes.push_back(
+          mesh.node_set_notes[set_name] =
             "the node set '" + name + "' of " + file + " has " +
             std::to_string(on_edges) +
             " mid-side node(s) of second-order elements, which glide does "
@@ -698,7 +699,7 @@ namespace glide
             "force or condition on it acts on its " +
             std::to_string(points.size()) +
             " corner node(s) only. Give the set corner nodes only, or load "
-            "a surface with a traction instead.");
+            "a surface with a traction instead.";
         if (!points.empty())
           mesh.node_sets[set_name] = points;
         else

@@ -115,6 +115,9 @@ namespace glide
     std::set<std::string> element_types;
     /// Warnings about the body's mesh for the log (duplicate nodes).
     std::vector<std::string> notes;
+    /// Warnings about node sets (mid-side nodes), by set name: for the log
+    /// where the scene uses the set.
+    std::map<std::string, std::string> node_set_notes;
   };
 
   /**
