@@ -497,7 +497,7 @@ namespace glide
               for (unsigned int k = 0; k <= 1000; ++k)
                 {
                   const double t = k / 1000.;
-                  Point<dim> centre;
+                  Point<dim>   centre;
                   for (unsigned int d = 0; d < dim; ++d)
                     centre[d] = p.point[d];
                   const double r         = master->move(centre, 0., t)[0],
