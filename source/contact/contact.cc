@@ -489,18 +489,16 @@ namespace glide
             // its normal at the axis has a radial part that no surface of
             // revolution has (until 2026-12-07 accepted: a circle centred
             // at r = -0.3 put a radial force on the axis node, exit 0).
-            // Checked along the whole motion, at 1000 load factors (a
-            // cut-back may stop at any; until 2026-12-07 at 0, the first
-            // step's and 1 only).
+            // Checked along the whole motion, at 1001 load factors 0,
+            // 0.001, ..., 1 (a cut-back may stop at any; until 2026-12-07
+            // at 0, the first step's and 1 only), where the motion puts
+            // the centre (a constant 'Translation' moves it at t = 0 too).
             if (dim == 2 && p.master_type == MasterType::rigid_circle &&
                 scene.analysis == AnalysisType::axisymmetric)
               for (unsigned int k = 0; k <= 1000; ++k)
                 {
-                  const double t = k / 1000.;
-                  Point<dim>   centre;
-                  for (unsigned int d = 0; d < dim; ++d)
-                    centre[d] = p.point[d];
-                  const double r         = master->move(centre, 0., t)[0],
+                  const double t         = k / 1000.;
+                  const double r         = master->centre_at(t)[0],
                                tolerance = 1e-10 * p.radius;
                   if (std::abs(r) <= tolerance || r >= p.radius - tolerance)
                     continue;

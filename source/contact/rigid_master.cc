@@ -117,14 +117,23 @@ namespace glide
   }
 
   template <int dim>
+  Point<dim>
+  RigidMaster<dim>::centre_at(const double t) const
+  {
+    const auto [u, theta] = motion(t);
+    // Rotation about 'Rotation axis' (z in 2D).
+    return rotation_center + u +
+           rotate<dim>(reference_point - rotation_center, axis, theta);
+  }
+
+  template <int dim>
   void
   RigidMaster<dim>::set_time(const double t)
   {
-    const auto [u, theta] = motion(t);
-    // Rotation about 'Rotation axis' (z in 2D); a cylinder's axis (z in
-    // the reference configuration) turns with the master.
-    point = rotation_center + u +
-            rotate<dim>(reference_point - rotation_center, axis, theta);
+    const auto theta = motion(t).second;
+    point            = centre_at(t);
+    // A cylinder's axis (z in the reference configuration) turns with the
+    // master.
     normal = rotate<dim>(reference_normal, axis, theta);
     if constexpr (dim == 3)
       cylinder_axis = rotate<dim>(Tensor<1, dim>({0., 0., 1.}), axis, theta);

@@ -1147,6 +1147,7 @@ namespace glide
         if (!nset_names.count(upper(n)) && !internal.count(upper(n)))
           {
             auto &nodes = c.node_sets[n];
+            c.element_set_nodes.insert(n);
             for (const auto id : ids)
               if (const auto e = own.elements.find(id); e != own.elements.end())
                 for (const auto node : e->second.nodes)

@@ -543,7 +543,6 @@ namespace glide
     // Surfaces: faces of the body's boundary.
     std::map<std::vector<unsigned int>, std::set<std::string>> labels;
     std::set<std::string>                                      surface_names;
-    std::set<std::string> inside_the_body; // surfaces with a face inside
     for (const auto &[name, surface_faces] : content.surfaces)
       {
         unsigned int n = 0;
@@ -616,7 +615,6 @@ namespace glide
                 l = l->second.empty() ? labels.erase(l) : std::next(l);
               }
             mesh.unavailable[name] = inside;
-            inside_the_body.insert(name);
             continue;
           }
         if (n > 0)
@@ -673,12 +671,11 @@ namespace glide
               on_edges += midside.count(n);
             }
         // '<name>.nodes' where the file has a surface of that name, also
-        // one unavailable here (a face inside the body): the scene's
-        // '<body>.<name>' must reach the surface and its error.
+        // one unavailable here (a face inside the body, or none on this
+        // body's cells): the scene's '<body>.<name>' must reach the surface
+        // and its error.
         const std::string set_name =
-          surface_names.count(name) || inside_the_body.count(name) ?
-            name + ".nodes" :
-            name;
+          content.surfaces.count(name) ? name + ".nodes" : name;
         // Mid-side nodes of the body's second-order elements are not in
         // glide's mesh: a force on the set acts on its corner nodes only,
         // which Abaqus' *CLOAD would not (until 2026-12-07 in silence: a
@@ -689,7 +686,8 @@ namespace glide
         // (those are the whole elements', mid-side nodes included), nor for a
         // set that a surface of the same name is made of (a scene loads the
         // surface; its node set is '<name>.nodes').
-        if (!points.empty() && on_edges > 0 && !content.cell_sets.count(name) &&
+        if (!points.empty() && on_edges > 0 &&
+            !content.element_set_nodes.count(name) &&
             !surface_names.count(name))
           mesh.node_set_notes[set_name] =
             "the node set '" + name + "' of " + file + " has " +

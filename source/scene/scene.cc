@@ -1627,7 +1627,7 @@ namespace glide
             std::string path;
             for (const auto &part :
                  Utilities::split_string_list(o->substr(0, eq), '/'))
-              path += (path.empty() ? "" : "/") + part;
+              path += (path.empty() ? "" : "/") + Utilities::trim(part);
             if (!path.empty() &&
                 message.find("'" + path + "'") != std::string::npos)
               return "Command-line option --set '" + *o + "' (scene file '" +

@@ -175,7 +175,10 @@ def case_midside_nodes_in_a_node_set():
     elements) get no warning, nor does straight_cpe8.inp, whose *NSET TOP
     with mid-side nodes is the node set of its surface TOP. Nor does the
     file where the scene does not use MIXED (until 2026-12-07 its warning
-    was printed at every run of a scene on that file)."""
+    was printed at every run of a scene on that file). An *NSET named like
+    an *ELSET is the *NSET, and warned about as such
+    (c3d20_nset_named_like_an_elset.inp: MIXED renamed E_zmax_2; until
+    2026-12-07 no warning)."""
     rows, log, _ = one_body("c3d20_mixed_node_set.inp", "Dimension=3", "Analysis type=3d",
                             "Boundary conditions=hold, load", "Boundary condition hold/Surface=part.B_ymin",
                             "Boundary condition load/Surface=part.MIXED", "Boundary condition load/Type=force",
@@ -194,6 +197,13 @@ def case_midside_nodes_in_a_node_set():
                             "Boundary condition load/Surface=part.B_ymax", "Boundary condition load/Type=traction",
                             "Boundary condition load/Function=0; -t; 0", name="midside-unused")
     check("mid-side node(s) of second-order" not in log, "MIXED not used by the scene: no warning")
+    rows, log, _ = one_body("c3d20_nset_named_like_an_elset.inp", "Dimension=3", "Analysis type=3d",
+                            "Boundary conditions=hold, load", "Boundary condition hold/Surface=part.B_ymin",
+                            "Boundary condition load/Surface=part.E_zmax_2", "Boundary condition load/Type=force",
+                            "Boundary condition load/Function=0; -t; 0", name="midside-elset-name")
+    check("the node set 'E_zmax_2' of" in log and "has 2 mid-side node(s) of second-order elements" in log,
+          "an *NSET named like an *ELSET is warned about")
+    close(rows[-1]["reaction_hold_y"], 1., 1e-9, "the *NSET's corner node is loaded, not the element set's nodes")
     close(rows[-1]["reaction_hold_y"], 1., 1e-9, "the traction on the unit face B_ymax is carried")
 
 

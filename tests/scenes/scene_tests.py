@@ -2014,6 +2014,24 @@ def case_unused_entries():
         check(log.count(said) == 1, f"meshed rigid punch: {said!r}")
 
 
+def case_axisymmetric_rigid_circle_moved_onto_the_axis():
+    """In an axisymmetric scene a rigid circle is checked where its motion
+    puts it: 'Point' at r = -0.5 with a constant 'Translation' of 0.5 in r
+    is a sphere's section centred on the axis at every load factor, and is
+    accepted (--check: exit 0); until 2026-12-07 the check read 'Point'
+    without the motion at t = 0 and refused it. The constant translation
+    that moves a centred 'Point' off the axis is refused at t = 0
+    (error.axisymmetric_rigid_circle_translated_off_the_axis)."""
+    out = tempfile.mkdtemp(prefix="glide-axis-")
+    p = subprocess.run([ARGS.glide, scene_file("hertz-axisymmetric.prm"), "--check", "--set", f"Output/Directory={out}",
+                        "--set", "Contact pair hertz/Master=rigid circle",
+                        "--set", "Contact pair hertz/Rigid master/Point=-0.5, -1",
+                        "--set", "Contact pair hertz/Rigid master/Radius=1",
+                        "--set", "Contact pair hertz/Rigid master/Translation=0.5; 0"],
+                       capture_output=True, text=True, timeout=120)
+    check(p.returncode == 0, f"accepted: exit 0 ({p.returncode}): {(p.stdout + p.stderr)[-400:]}")
+
+
 def case_check_only():
     """--check sets the scene up and runs every input check, prints the
     summary and the warnings and stops: exit 0, nothing written, no load

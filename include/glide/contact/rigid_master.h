@@ -53,6 +53,11 @@ namespace glide
     void
     set_time(const double t);
 
+    /// Where the centre ('Point', moved by 'Translation' and 'Rotation')
+    /// is at load factor @p t.
+    dealii::Point<dim>
+    centre_at(const double t) const;
+
     /// Where the master's material point that is at @p y at load factor
     /// @p from is at load factor @p to (for the slip of a slave node).
     dealii::Point<dim>
@@ -81,7 +86,9 @@ namespace glide
      * it started inside (in contact, or
      * penetrating under penalty). 0 where the path stays outside, where the
      * point ends not more than @p clearance outside (in contact) on the
-     * same side of the centre (axis) as it started, for a plane and for a
+     * same side of the centre (axis) as it started, or on the far side with
+     * its path no closer to the centre than R / 2 (it slid round in
+     * contact), for a plane and for a
      * slave inside (a hole: a point outside at its end has never been
      * inside). A master that passed through a slave node within one
      * increment leaves it open at its end, whether it was open or in

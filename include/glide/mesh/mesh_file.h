@@ -80,6 +80,9 @@ namespace glide
     /// Named node sets (Abaqus *NSET, node-based *SURFACE, the nodes of an
     /// *ELSET; Gmsh physical groups of points, and of lines in 3D).
     std::map<std::string, std::set<long>> node_sets;
+    /// The node sets above that are the nodes of an element set (whole
+    /// elements, mid-side nodes included).
+    std::set<std::string> element_set_nodes;
   };
 
   /**
