@@ -62,12 +62,7 @@ def main():
     ap.add_argument("--quick", action="store_true", help="only the two smaller sizes")
     ap.add_argument("--markdown", help="also write the table to this file")
     a = ap.parse_args()
-    study_runs.check_binary(os.path.abspath(a.glide))
-    study_runs.stop_children_on_signals()
-    try:
-        benchmark(a)
-    except study_runs.StudyError as e:
-        study_runs.report_study_error(e)
+    study_runs.main(benchmark, a, os.path.abspath(a.glide))
 
 
 def benchmark(a):

@@ -169,12 +169,7 @@ def main():
                     help="with --processes 1,P: also P one-process runs at once (the machine's own limit "
                          "on the speed-up)")
     a = ap.parse_args()
-    study_runs.check_binary(a.glide)
-    study_runs.stop_children_on_signals()
-    try:
-        return tables(a)
-    except study_runs.StudyError as e:
-        study_runs.report_study_error(e)
+    return study_runs.main(tables, a, a.glide)
 
 
 def tables(a):

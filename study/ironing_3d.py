@@ -242,13 +242,8 @@ def main():
     a.add_argument("--die", default="48,13", help="die cells around and along its half width")
     a.add_argument("--limit", type=float, default=None, help="seconds per run")
     args = a.parse_args()
-    study_runs.check_binary(os.path.abspath(args.glide))
     study_runs.check_binary(TIME, "GNU time (for the peak memory)")
-    study_runs.stop_children_on_signals()
-    try:
-        return study(args)
-    except study_runs.StudyError as e:
-        study_runs.report_study_error(e)
+    return study_runs.main(study, args, os.path.abspath(args.glide))
 
 
 def study(args):

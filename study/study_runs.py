@@ -154,3 +154,15 @@ def report_study_error(e):
     """Print e and exit with STUDY_FAILED."""
     print(f"{os.path.basename(sys.argv[0])}: the study failed, nothing was written: {e}", file=sys.stderr)
     sys.exit(STUDY_FAILED)
+
+
+def main(study, a, glide):
+    """A study script's main part: check the glide binary, stop the
+    children with the script, and return study(a); a StudyError ends the
+    script with its message (report_study_error)."""
+    check_binary(glide)
+    stop_children_on_signals()
+    try:
+        return study(a)
+    except StudyError as e:
+        report_study_error(e)

@@ -105,12 +105,7 @@ def main():
                          "glide's reason, one per line, in TABLE.failed) instead of stopping; any other "
                          "failure of glide stops the study (exit status 2)")
     a = ap.parse_args()
-    study_runs.check_binary(a.glide)
-    study_runs.stop_children_on_signals()
-    try:
-        study(a)
-    except study_runs.StudyError as e:
-        study_runs.report_study_error(e)
+    study_runs.main(study, a, a.glide)
 
 
 def study(a):
