@@ -621,14 +621,27 @@ namespace glide
             }
           // The indexes: first all written and checked under their
           // temporary names, then renamed one right after the other.
+          // statistics.csv goes last: it is the step's commit record. A
+          // SIGKILL between these renames (nothing can block it) leaves
+          // .pvd files that list at most the one step statistics.csv
+          // does not list yet, never fewer steps; whoever watches
+          // statistics.csv (a job script, the fault tests) sees a step
+          // only once every index lists it.
           pending_indexes.clear();
           write_indexes();
+          const auto is_record = [](const std::string &f) {
+            return ends_with(f, ".csv");
+          };
           SignalBlocker blocker;
           for (const auto &f : pending_indexes)
-            rename_into_place(directory + "/" + f + ".tmp", f);
-          pending_indexes.clear();
+            if (!is_record(f))
+              rename_into_place(directory + "/" + f + ".tmp", f);
           for (const auto &f : indexes)
             rename_into_place(staging_directory + "/" + f, f);
+          for (const auto &f : pending_indexes)
+            if (is_record(f))
+              rename_into_place(directory + "/" + f + ".tmp", f);
+          pending_indexes.clear();
         }
       catch (const OutputError &e)
         {
