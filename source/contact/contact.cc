@@ -1503,6 +1503,10 @@ namespace glide
           }
         pair.formulation->commit_step(U, s, closed, t_old, t_new);
       }
+    // The history just committed may read DoFs of nodes this process does
+    // not hold (Mortar: the last step's master nodes under the slave).
+    if (Utilities::MPI::n_mpi_processes(comm) > 1)
+      update_read_ghosts();
     unheld_motions(closed_nodes);
   }
 

@@ -1413,6 +1413,40 @@ namespace glide
   }
 
   template <int dim>
+  std::array<std::vector<std::pair<types::global_dof_index, double>>, dim>
+  MasterSurface<dim>::point_weights(const unsigned int piece,
+                                    const Xi          &xi) const
+  {
+    auto pos = [&](const unsigned int k) {
+      std::array<double, dim> y;
+      for (unsigned int d = 0; d < dim; ++d)
+        y[d] = x[k][d];
+      return y;
+    };
+    std::array<double, dim>                      y, n;
+    std::array<std::array<double, dim>, dim - 1> a;
+    std::vector<double>                          w;
+    const Piece                                 &p = pieces[piece];
+    geometry<double>(p, xi, pos, y, a, n, &w);
+    std::array<std::vector<std::pair<types::global_dof_index, double>>, dim>
+      result;
+    for (unsigned int j = 0; j < p.vnodes.size(); ++j)
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const auto &dofs = nodes[p.vnodes[j].first].dofs;
+          if (p.vnodes[j].second && d == p.mirror_axis)
+            {
+              // Mirrored: 2 x_mirror - x_j in the axis' component.
+              result[d].emplace_back(nodes[p.mirror_node].dofs[d], 2. * w[j]);
+              result[d].emplace_back(dofs[d], -w[j]);
+            }
+          else
+            result[d].emplace_back(dofs[d], w[j]);
+        }
+    return result;
+  }
+
+  template <int dim>
   typename MasterSurface<dim>::Projection
   MasterSurface<dim>::project_on(const unsigned int i,
                                  const Point<dim>  &xs) const

@@ -303,8 +303,7 @@ namespace glide
     previous_position.clear();
     for (const auto &node : nodes)
       previous_position.push_back(node.X);
-    previous_point = previous_position;
-    previous_weights.assign(nodes.size(), {});
+    previous_point.assign(nodes.size(), {});
     previous_found.assign(nodes.size(), false);
     slave_x.clear();
   }
@@ -316,6 +315,8 @@ namespace glide
     Formulation<dim>::read_dofs(dofs);
     for (const auto &node : slave->get_nodes())
       dofs.insert(dofs.end(), node.dofs.begin(), node.dofs.end());
+    for (const auto &point : previous_point)
+      point.dofs(dofs);
   }
 
   template <int dim>
@@ -987,51 +988,36 @@ namespace glide
     const auto &nodes = *this->nodes;
     move(U);
     this->report_failed(s, "a mortar projection");
-    // The master nodes' current positions by their first DoF.
-    const auto &x            = this->surface->get_positions();
     const auto &master_nodes = this->surface->get_nodes();
-    std::unordered_map<types::global_dof_index, unsigned int> by_dof;
-    for (unsigned int k = 0; k < master_nodes.size(); ++k)
-      by_dof.emplace(master_nodes[k].dofs[0], k);
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
         // Slip (R12), while closed: the tangential motion of the node
         // relative to the master's material under it, i.e. to the last
-        // step's mortar point sum_m (M_jm / D_jj) x_m with the last step's
-        // weights and the master nodes' current positions. (The current
-        // mortar point follows the slave node as it slides, so the motion
-        // relative to it was round-off: CSLIP 1e-12 after a slide of 0.6,
-        // until 2026-12-07; scene.mortar_slip.)
+        // step's mortar point sum_m (M_jm / D_jj) x_m moved with the
+        // master nodes' displacements since. (The current mortar point
+        // follows the slave node as it slides, so the motion relative to
+        // it was round-off: CSLIP 1e-12 after a slide of 0.6, until
+        // 2026-12-07; scene.mortar_slip. The displacements are read from
+        // U, not from the facets this process holds: under MPI a step's
+        // slip was dropped where the last step's master nodes were no
+        // longer gathered, until 2026-12-07.)
         const auto t     = terms(i);
         const bool found = s[i].found();
         if (closed[i] && found && previous_found[i] &&
-            !previous_weights[i].empty())
-          {
-            Point<dim> moved;
-            bool       all = true;
-            for (const auto &[dof, w] : previous_weights[i])
-              if (const auto k = by_dof.find(dof); k != by_dof.end())
-                moved += w * x[k->second];
-              else
-                all = false; // no longer near this process's slave nodes
-            if (all)
-              this->accumulate_slip(i,
-                                    s[i].normal,
-                                    (s[i].x - previous_position[i]) -
-                                      (moved - previous_point[i]));
-          }
-        Point<dim> point;
-        previous_weights[i].clear();
+            !previous_point[i].empty())
+          this->accumulate_slip(i,
+                                s[i].normal,
+                                (s[i].x - previous_position[i]) -
+                                  previous_point[i].motion(U));
+        previous_point[i].clear();
         if (t.weight > 0.)
           for (unsigned int a = 0; a < t.master_nodes.size(); ++a)
-            {
-              const double w = t.M[a] / t.weight;
-              point += w * x[t.master_nodes[a]];
-              previous_weights[i].emplace_back(
-                master_nodes[t.master_nodes[a]].dofs[0], w);
-            }
+            for (unsigned int d = 0; d < dim; ++d)
+              previous_point[i].add(d,
+                                    master_nodes[t.master_nodes[a]].dofs[d],
+                                    t.M[a] / t.weight,
+                                    U);
         previous_position[i] = s[i].x;
-        previous_point[i]    = point;
         previous_found[i]    = found;
       }
   }

@@ -21,10 +21,12 @@ namespace glide
       previous_position.push_back(node.X);
     if (this->surface)
       {
-        previous_projection.clear();
+        // At the reference configuration (zero displacement).
+        previous_point.clear();
         for (const auto &node : nodes)
-          previous_projection.push_back(
-            this->surface->project(node.X, 1.5 * node.size));
+          previous_point.push_back(
+            material_point(this->surface->project(node.X, 1.5 * node.size),
+                           VectorType()));
         coupled.assign(nodes.size(), {});
         cached.assign(nodes.size(), {});
       }
@@ -214,14 +216,6 @@ namespace glide
         held_piece[i]   = renumber(held_piece[i]);
         held_partner[i] = held_piece[i] >= 0 ? renumber(held_partner[i]) : -1;
       }
-    for (auto &p : previous_projection)
-      if (p.found)
-        {
-          const int piece = renumber(static_cast<int>(p.piece));
-          p.found         = piece >= 0;
-          p.piece         = piece >= 0 ? piece : 0;
-          p.partner       = renumber(p.partner);
-        }
     // The cached projections refer to the old pieces: version() changed.
   }
 
@@ -367,18 +361,15 @@ namespace glide
         if (closed[i] && this->surface)
           {
             // Relative to the master's material point that was under the
-            // slave node at the end of the last step (same piece and
-            // parameters, now in the current configuration).
-            const auto &old = previous_projection[i];
-            if (old.found)
-              {
-                const Point<dim> y =
-                  this->surface->evaluate(old.piece, old.xi).first;
-                this->accumulate_slip(i,
-                                      s[i].normal,
-                                      (s[i].x - previous_position[i]) -
-                                        (y - old.point));
-              }
+            // slave node at the end of the last step, moved with the
+            // master's nodes. (Read from U: under MPI the piece it was on
+            // may have left this process, and the step's slip was dropped
+            // there until 2026-12-07; scene.slip_mpi_matches_serial.)
+            if (!previous_point[i].empty())
+              this->accumulate_slip(i,
+                                    s[i].normal,
+                                    (s[i].x - previous_position[i]) -
+                                      previous_point[i].motion(U));
           }
         else if (closed[i])
           {
@@ -396,9 +387,35 @@ namespace glide
           }
         previous_position[i] = s[i].x;
         if (this->surface)
-          previous_projection[i] = s[i].projection;
+          previous_point[i] = material_point(s[i].projection, U);
       }
-    (void)U;
+  }
+
+  template <int dim>
+  MaterialPoint<dim>
+  NodeToSurfaceFinite<dim>::material_point(
+    const typename MasterSurface<dim>::Projection &p,
+    const VectorType                              &U) const
+  {
+    MaterialPoint<dim> point;
+    if (p.found)
+      {
+        const auto weights = this->surface->point_weights(p.piece, p.xi);
+        for (unsigned int d = 0; d < dim; ++d)
+          for (const auto &[dof, w] : weights[d])
+            point.add(d, dof, w, U);
+      }
+    return point;
+  }
+
+  template <int dim>
+  void
+  NodeToSurfaceFinite<dim>::read_dofs(
+    std::vector<types::global_dof_index> &dofs) const
+  {
+    Formulation<dim>::read_dofs(dofs);
+    for (const auto &point : previous_point)
+      point.dofs(dofs);
   }
 
   template class NodeToSurfaceFinite<2>;

@@ -725,6 +725,11 @@ def compare_with_serial(what, serial, parallel, serial_out, parallel_out, pair, 
     check(all(a[k]["CSTATUS"] == b[k]["CSTATUS"] for k in a if k in b), f"{what}: the same status at every node")
     check(dp <= rel and dx <= rel, f"{what}: nodal CPRESS and positions as on one process "
           f"(largest differences {dp:.1e}, {dx:.1e} of the largest)")
+    slip = max(n.get("CSLIP", 0.) for n in a.values())
+    if slip > 0.:
+        ds = max(abs(a[k]["CSLIP"] - b[k]["CSLIP"]) for k in a if k in b) / slip
+        check(ds <= rel, f"{what}: nodal CSLIP as on one process (largest difference {ds:.1e} of the "
+              f"largest slip, {slip:.3g})")
 
 
 def case_robustness_mpi_matches_serial():
@@ -1028,6 +1033,39 @@ def case_far_from_the_origin():
             check(dp <= 1e-6, f"{what}: nodal CPRESS as at the origin (largest difference {dp:.1e} of the peak)")
             if "round-off floor" in log and "contact gaps" in log:
                 print(f"measured: {what}: accepted at the contact gaps' round-off floor")
+
+
+def case_slip_mpi_matches_serial():
+    """R12, R15.2: CSLIP under mpirun (run with 2 processes) as on one
+    process, for mortar and node to surface, where a step slides the slave
+    farther than the master facets a process holds around it: the block of
+    tests/scenes/slide-off-the-end.prm on a lower block 4 long, pressed in
+    one step and slid 3.0 in the next. Until 2026-12-07 mortar read the
+    last step's master nodes only from the facets the process held, so
+    under MPI a step's slip was dropped where they were no longer gathered:
+    CSLIP 0 instead of 3.0."""
+    sets = ("Output/Write VTU=false", "Body lower/Block/Upper corner=4, 0.5", "Body lower/Block/Subdivisions=40, 5",
+            "Boundary condition push/Function=3.0*max(0,t-0.5)/0.5; -0.01*min(1,t/0.5)",
+            "Load stepping/Number of steps=2")
+    for formulation in ("mortar", "node to surface"):
+        tag = formulation.replace(" ", "-")
+        extra = sets + (f"Contact pair pair/Formulation={formulation}",)
+        serial, _, s_out = run(scene("slide-off-the-end.prm"), *extra, name=f"long-slide-{tag}-serial")
+        parallel, log, p_out = run(scene("slide-off-the-end.prm"), *extra, name=f"long-slide-{tag}-mpi", mpi=True)
+        # The slide outruns the facets gathered around the slave nodes.
+        moved = [float(m) for m in re.findall(r"master facets gathered again \(gather \d+; slave nodes and master "
+                                              r"moved by ([0-9.e+-]+)", log)]
+        reach = re.search(r"the master surface's (\d+) facets .*each process holds those within ([0-9.e+-]+) of its "
+                          r"slave nodes: (\d+) to (\d+)", log)
+        check(reach is not None and int(reach.group(4)) < int(reach.group(1)) and moved
+              and max(moved) > float(reach.group(2)),
+              f"{formulation}: the slide ({max(moved) if moved else 0}) outruns the master facets gathered "
+              f"({reach.group(0) if reach else 'no gather'})")
+        closed = [n for n in contact_nodes(p_out, "pair") if n["CSTATUS"] > 0]
+        check(len(closed) >= 5 and all(abs(n["CSLIP"] - 3.0) < 0.01 for n in closed),
+              f"{formulation}: CSLIP = 3.0 within 0.01 at every closed node under MPI: "
+              + " ".join(f'{n["CSLIP"]:.4f}' for n in closed))
+        compare_with_serial(f"{formulation}, long slide", serial, parallel, s_out, p_out, "pair")
 
 
 def case_ironing_mpi_matches_serial():

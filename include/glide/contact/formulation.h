@@ -57,6 +57,62 @@ namespace glide
     std::vector<std::pair<dealii::types::global_dof_index, double>> hanging;
   };
 
+  /// A point of the master's material as a linear combination of DoF
+  /// values, recorded at the end of a step (the slip, R12: the slave node's
+  /// motion relative to the material that was under it). Its motion since
+  /// is, per component, sum weight * (U[dof] - value). Read through DoFs,
+  /// not through the facets a process holds, so that under MPI it moves
+  /// with the master also after the slave slid out of their reach.
+  template <int dim>
+  struct MaterialPoint
+  {
+    struct Term
+    {
+      dealii::types::global_dof_index dof;
+      double                          weight;
+      double                          value; ///< U[dof] when recorded
+    };
+    std::array<std::vector<Term>, dim> terms;
+
+    bool
+    empty() const
+    {
+      return terms[0].empty();
+    }
+    void
+    clear()
+    {
+      for (auto &t : terms)
+        t.clear();
+    }
+    /// Adds weight * (the DoF's value) to component @p d.
+    void
+    add(const unsigned int                    d,
+        const dealii::types::global_dof_index dof,
+        const double                          weight,
+        const VectorType                     &U)
+    {
+      terms[d].push_back({dof, weight, U.size() > 0 ? U[dof] : 0.});
+    }
+    /// The motion since it was recorded, at @p U.
+    dealii::Tensor<1, dim>
+    motion(const VectorType &U) const
+    {
+      dealii::Tensor<1, dim> m;
+      for (unsigned int d = 0; d < dim; ++d)
+        for (const auto &t : terms[d])
+          m[d] += t.weight * (U[t.dof] - t.value);
+      return m;
+    }
+    void
+    dofs(std::vector<dealii::types::global_dof_index> &out) const
+    {
+      for (const auto &component : terms)
+        for (const auto &t : component)
+          out.push_back(t.dof);
+    }
+  };
+
   /// Why a constraint exists or not at an iterate (house style: an explicit
   /// outcome that callers handle and the statistics count, R16.3).
   enum class Outcome

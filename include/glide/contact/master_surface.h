@@ -323,6 +323,14 @@ namespace glide
     std::pair<dealii::Point<dim>, dealii::Tensor<1, dim>>
     evaluate(const unsigned int piece, const Xi &xi) const;
 
+    /// The point of piece @p piece at @p xi, sum_j w_j y_j, linear in the
+    /// node positions (y_j a node's position or its mirror image in a
+    /// symmetry plane): per component of the point, the (DoF, weight)
+    /// pairs, so that the point moves by sum weight * (the DoF's change).
+    std::array<std::vector<std::pair<dealii::types::global_dof_index, double>>,
+               dim>
+    point_weights(const unsigned int piece, const Xi &xi) const;
+
     const std::vector<Node> &
     get_nodes() const
     {

@@ -5,7 +5,6 @@
 #include <deal.II/base/bounding_box.h>
 #include <deal.II/numerics/rtree.h>
 
-#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -243,15 +242,14 @@ namespace glide
     mutable std::shared_ptr<PairCache> pair_cache;
     /// Per node: master nodes coupled in the sparsity pattern (sorted).
     std::vector<std::vector<unsigned int>> coupled;
-    /// Per node: position, mortar point sum_m (M_jm / D_jj) x_m and its
-    /// weights M_jm / D_jj by the master node's first DoF (stable where
-    /// the surface's node numbers are not: a process gathers its master
-    /// nodes anew) at the end of the last converged step (for the slip,
-    /// R12: the slave node's motion relative to the master's material
-    /// under it, the mortar point moved with the master).
-    std::vector<dealii::Point<dim>> previous_position, previous_point;
-    std::vector<std::vector<std::pair<dealii::types::global_dof_index, double>>>
-                      previous_weights;
-    std::vector<bool> previous_found;
+    /// Per node, at the end of the last converged step: position, and the
+    /// mortar point sum_m (M_jm / D_jj) x_m as a point of the master's
+    /// material (for the slip, R12: the slave node's motion relative to
+    /// the master's material under it). Its DoFs are read through
+    /// read_dofs(), so under MPI it moves with the master also where this
+    /// process no longer holds the facets.
+    std::vector<dealii::Point<dim>> previous_position;
+    std::vector<MaterialPoint<dim>> previous_point;
+    std::vector<bool>               previous_found;
   };
 } // namespace glide

@@ -91,11 +91,21 @@ namespace glide
                 const double                        t_old,
                 const double                        t_new) override;
 
+    void
+    read_dofs(
+      std::vector<dealii::types::global_dof_index> &dofs) const override;
+
   protected:
     void
     renumber_pieces(const std::vector<std::uint64_t> &old_keys) override;
 
   private:
+    /// The master's material point at projection @p p (empty if not
+    /// found), with the DoF values of @p U (empty: zero).
+    MaterialPoint<dim>
+    material_point(const typename MasterSurface<dim>::Projection &p,
+                   const VectorType                              &U) const;
+
     /// Distance of constraint @p s from the end of its piece along the
     /// piece's tangent plane (0 inside the piece).
     static double
@@ -103,10 +113,11 @@ namespace glide
 
     /// Per node: master nodes coupled in the sparsity pattern (sorted).
     std::vector<std::vector<unsigned int>> coupled;
-    /// Per node: position and projection at the end of the last converged
-    /// step.
-    std::vector<dealii::Point<dim>>                      previous_position;
-    std::vector<typename MasterSurface<dim>::Projection> previous_projection;
+    /// Per node: position at the end of the last converged step, and
+    /// (deformable and meshed rigid masters) the master's material point
+    /// under it then (empty: none).
+    std::vector<dealii::Point<dim>> previous_position;
+    std::vector<MaterialPoint<dim>> previous_point;
     /// Deformable faceted masters: per node, the piece it is held on (-1:
     /// none), set by hold() between two attempts at a step. At a faceted
     /// corner the force direction jumps between the facets' normals, and
