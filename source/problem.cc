@@ -691,18 +691,31 @@ namespace glide
     // alternated at), that is not the scene's answer: the step fails and
     // is cut back instead.
     if (result.converged && held)
-      if (const double error = contact.held_gap_error(U_trial);
-          error > max_held_gap_error)
-        {
-          result.converged = false;
-          std::ostringstream message;
+      {
+        std::ostringstream message;
+        if (const double error = contact.held_gap_error(U_trial);
+            error > max_held_gap_error)
           message << "the gap of a slave node held on one master facet "
                      "differs from its gap to the master by "
                   << error << " of the facet's length (at most "
                   << max_held_gap_error
                   << "): the held problem's answer is not the scene's";
-          result.message = message.str();
-        }
+        else if (const double effect = contact.held_force_effect(U_trial);
+                 effect > max_held_force_effect)
+          message << "the gaps of slave nodes held on one master facet "
+                     "differ from their gaps to the master by enough to "
+                     "move their nodal forces by up to "
+                  << std::setprecision(2) << 100. * effect
+                  << " % of their pair's largest (at most "
+                  << 100. * max_held_force_effect
+                  << " %; gap error times the contact stiffness E A / h): "
+                     "the held problem's answer is not the scene's";
+        if (!message.str().empty())
+          {
+            result.converged = false;
+            result.message   = message.str();
+          }
+      }
     return result;
   }
 

@@ -1049,9 +1049,23 @@ namespace glide
     const VectorType &U     = view(U_in);
     double            worst = 0.;
     for (const auto &pair : pairs)
-      worst =
-        std::max(worst, pair.formulation->held_gap_error(constraints(pair, U)));
+      for (const auto &held : pair.formulation->held_gaps(constraints(pair, U)))
+        worst = std::max(worst, held.error / held.facet_length);
     return Utilities::MPI::max(worst, comm);
+  }
+
+  template <int dim>
+  double
+  Contact<dim>::held_force_effect(const VectorType &U_in) const
+  {
+    const VectorType &U     = view(U_in);
+    double            worst = 0.;
+    for (const auto &pair : pairs)
+      {
+        const auto s = constraints(pair, U);
+        worst = std::max(worst, held_force_effect(pair, s, forces(pair, s, U)));
+      }
+    return worst;
   }
 
   template <int dim>
@@ -1375,9 +1389,34 @@ namespace glide
         count("unanchored", unanchored);
         count("prescribed", prescribed);
         count("held", pair.formulation->n_held());
+        row.emplace_back(p + "held_force_effect",
+                         format_number(held_force_effect(pair, s, f)));
         count("fallbacks", pair.formulation->n_fallbacks());
       }
     return row;
+  }
+
+  template <int dim>
+  double
+  Contact<dim>::held_force_effect(
+    const Pair                                                 &pair,
+    const std::vector<Constraint<dim>>                         &s,
+    const std::vector<typename ContactEnforcement<dim>::Force> &f) const
+  {
+    double largest = 0., effect = 0.;
+    for (const auto &force : f)
+      largest = std::max(largest, std::abs(force.lambda));
+    for (const auto &held : pair.formulation->held_gaps(s))
+      {
+        const auto  &node      = pair.nodes[held.node];
+        const double stiffness = pair.enforcement->compliant() && node.k > 0. ?
+                                   1. / (1. / node.c + 1. / node.k) :
+                                   node.c;
+        effect                 = std::max(effect, stiffness * held.error);
+      }
+    largest = Utilities::MPI::max(largest, comm);
+    effect  = Utilities::MPI::max(effect, comm);
+    return effect > 0. && largest > 0. ? effect / largest : 0.;
   }
 
   template <int dim>
@@ -1477,6 +1516,7 @@ namespace glide
           }
         finer_master_facets(pair, s, closed);
         hidden_penetration(pair, s, closed);
+
         if (!pair.prescribed_said)
           {
             std::vector<std::string> list;
@@ -1502,6 +1542,25 @@ namespace glide
                    "positions in the reference configuration)");
           }
         pair.formulation->commit_step(U, s, closed, t_old, t_new);
+        // After the formulation's note on its held nodes (they stay held
+        // until the next step starts).
+        if (const double effect = held_force_effect(pair, s, f);
+            effect > 1e-3 && Utilities::MPI::this_mpi_process(comm) == 0)
+          {
+            std::ostringstream text;
+            text << "contact pair '" << pair.parameters->name
+                 << "': the held nodes' gaps, measured to their facets' "
+                    "planes instead of the master, may move their nodal "
+                    "forces by up to "
+                 << std::setprecision(2) << 100. * effect
+                 << " % of the pair's largest (gap error times the contact "
+                    "stiffness E A / h; statistics.csv: held_force_effect)";
+            if (effect > 0.05)
+              text << ": read their CPRESS with care, or smooth the master "
+                      "('Smoothing fraction' > 0) or use 'Formulation = "
+                      "mortar'";
+            messages.push_back(text.str());
+          }
       }
     // The history just committed may read DoFs of nodes this process does
     // not hold (Mortar: the last step's master nodes under the slave).

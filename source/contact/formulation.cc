@@ -118,10 +118,10 @@ namespace glide
   }
 
   template <int dim>
-  double
-  Formulation<dim>::held_gap_error(const std::vector<Constraint<dim>> &) const
+  std::vector<typename Formulation<dim>::HeldGap>
+  Formulation<dim>::held_gaps(const std::vector<Constraint<dim>> &) const
   {
-    return 0.;
+    return {};
   }
 
   template <int dim>

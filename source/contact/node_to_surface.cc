@@ -279,13 +279,13 @@ namespace glide
   }
 
   template <int dim>
-  double
-  NodeToSurfaceFinite<dim>::held_gap_error(
+  std::vector<typename Formulation<dim>::HeldGap>
+  NodeToSurfaceFinite<dim>::held_gaps(
     const std::vector<Constraint<dim>> &s) const
   {
-    double worst = 0.;
+    std::vector<typename Formulation<dim>::HeldGap> result;
     if (!this->surface)
-      return worst;
+      return result;
     const auto &x = this->surface->get_positions();
     for (unsigned int i = 0; i < held_piece.size(); ++i)
       if (held_piece[i] >= 0 && s[i].found())
@@ -298,11 +298,10 @@ namespace glide
           const auto   free =
             this->surface->project(s[i].x, 1.5 * (*this->nodes)[i].size);
           // Beyond the end of the master: held in contact with nothing.
-          const double error =
-            free.found ? std::abs(free.gap - s[i].gap) / length : 1.;
-          worst = std::max(worst, error);
+          result.push_back(
+            {i, free.found ? std::abs(free.gap - s[i].gap) : length, length});
         }
-    return worst;
+    return result;
   }
 
   template <int dim>

@@ -148,6 +148,12 @@ namespace glide
     double
     held_gap_error(const VectorType &U) const;
 
+    /// At iterate @p U, the largest held_force_effect() of any pair: how
+    /// far the held nodes' gap errors may move their nodal forces,
+    /// relative to their pair's largest (0 without holds).
+    double
+    held_force_effect(const VectorType &U) const;
+
     /// Scale the stabilization of stabilization_weight(): 1 (the default)
     /// in full, 0 off (to compare the Jacobian with finite differences),
     /// in between while Newton converges (Problem: the residual reduction
@@ -496,6 +502,18 @@ namespace glide
     unheld_motions(
       const std::vector<
         std::vector<std::pair<unsigned int, dealii::Tensor<1, dim>>>> &closed);
+
+    /// The held nodes' estimated effect on their nodal forces (R16.1: a
+    /// heuristic that changes the problem is reported with its effect on
+    /// the answer): the largest gap error of a held node (to its facet's
+    /// plane instead of the master) times its contact stiffness E A / h
+    /// (in series with the penalty stiffness), relative to the pair's
+    /// largest nodal force (collective; 0 without holds).
+    double
+    held_force_effect(
+      const Pair                                                 &pair,
+      const std::vector<Constraint<dim>>                         &s,
+      const std::vector<typename ContactEnforcement<dim>::Force> &f) const;
 
     void
     finer_master_facets(Pair                               &pair,

@@ -290,11 +290,20 @@ namespace glide
     virtual unsigned int
     n_held() const;
 
-    /// The largest difference between a held node's gap (constraints @p s,
-    /// measured to the plane of the facet it is held on) and its gap to
-    /// the master, relative to that facet's length (0 without holds).
-    virtual double
-    held_gap_error(const std::vector<Constraint<dim>> &s) const;
+    /// A held node's gap error: the difference between its gap
+    /// (constraint, measured to the plane of the facet it is held on) and
+    /// its gap to the master (the free projection's; the facet's length
+    /// where that finds none), and the facet's length.
+    struct HeldGap
+    {
+      unsigned int node;
+      double       error;
+      double       facet_length;
+    };
+    /// The gap errors of the held nodes at constraints @p s (none without
+    /// holds).
+    virtual std::vector<HeldGap>
+    held_gaps(const std::vector<Constraint<dim>> &s) const;
 
     /// Constraints that fell back to a simpler formulation (R9.4).
     virtual unsigned int

@@ -81,8 +81,8 @@ namespace glide
                -1;
     }
 
-    double
-    held_gap_error(const std::vector<Constraint<dim>> &s) const override;
+    std::vector<typename Formulation<dim>::HeldGap>
+    held_gaps(const std::vector<Constraint<dim>> &s) const override;
 
     void
     commit_step(const VectorType                   &U,
