@@ -1516,7 +1516,6 @@ namespace glide
           }
         finer_master_facets(pair, s, closed);
         hidden_penetration(pair, s, closed);
-
         if (!pair.prescribed_said)
           {
             std::vector<std::string> list;

@@ -744,6 +744,83 @@ TEST(MasterSurface, MirroredEndAtSymmetryPlane)
   EXPECT_EQ(smooth->get_pieces().size(), 2 * facets.size() + 1);
 }
 
+// R12 (the slip under MPI): a point of a piece is a linear combination of
+// the node positions, so point_weights() applied to any displacement gives
+// where evaluate() puts the point, on every piece of a smoothed 2D chain
+// with mirrored ends and of a quadratic one, and on a 3D blended surface.
+template <int dim>
+static void
+expect_point_weights_move_the_point(const MasterSurface<dim> &master,
+                                    MasterSurface<dim>       &moving,
+                                    const VectorType         &U,
+                                    const std::string        &what)
+{
+  for (unsigned int i = 0; i < master.get_pieces().size(); ++i)
+    for (const double a : {0., 0.3, 1.})
+      for (const double b : {0., 0.7})
+        {
+          typename MasterSurface<dim>::Xi xi;
+          xi[0]              = a;
+          xi[dim - 2]        = dim == 3 ? b : a;
+          const auto weights = master.point_weights(i, xi);
+          const auto before  = master.evaluate(i, xi).first;
+          const auto after   = moving.evaluate(i, xi).first;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              double moved = 0.;
+              for (const auto &[dof, w] : weights[d])
+                moved += w * U[dof];
+              EXPECT_NEAR(before[d] + moved, after[d], 1e-12)
+                << what << ", piece " << i << ", component " << d;
+            }
+        }
+}
+
+TEST(MasterSurface, PointWeightsMoveThePointWithTheNodes)
+{
+  {
+    Fixture<2> s(ball_with_symmetric_top(), "weights2.prm");
+    const auto rest   = master_of<2>(s, "ball.curved", 0.2);
+    auto       moving = master_of<2>(s, "ball.curved", 0.2);
+    // A displacement that is no rigid motion (each node its own).
+    VectorType U(s.e.locally_owned(), MPI_COMM_WORLD);
+    for (const auto &node : moving->get_nodes())
+      for (unsigned int d = 0; d < 2; ++d)
+        U[node.dofs[d]] =
+          0.01 * std::sin(7. * node.X[0] + 3. * d) + 0.02 * node.X[1] * d;
+    moving->set_displacement(U);
+    unsigned int mirrored = 0;
+    for (const auto &piece : rest->get_pieces())
+      mirrored += piece.mirror_node >= 0 ? 1 : 0;
+    EXPECT_EQ(mirrored, 2u); // the mirrored ends are among the pieces
+    expect_point_weights_move_the_point<2>(*rest, *moving, U, "2D, f = 0.2");
+  }
+  {
+    Fixture<2> s(ball_on_block(2, 0.2, 2, "hard", "unsymmetric"),
+                 "weights2q.prm");
+    const auto rest   = master_of<2>(s, "ball.curved", 0.2);
+    auto       moving = master_of<2>(s, "ball.curved", 0.2);
+    VectorType U(s.e.locally_owned(), MPI_COMM_WORLD);
+    for (const auto &node : moving->get_nodes())
+      for (unsigned int d = 0; d < 2; ++d)
+        U[node.dofs[d]] = 0.01 * std::cos(5. * node.X[0] - 2. * d);
+    moving->set_displacement(U);
+    expect_point_weights_move_the_point<2>(*rest, *moving, U, "2D, Q2");
+  }
+  {
+    Fixture<3> s(ball_on_block(3, 0.2, 1, "hard", "unsymmetric"),
+                 "weights3.prm");
+    const auto rest   = master_of<3>(s, "ball.curved", 0.2);
+    auto       moving = master_of<3>(s, "ball.curved", 0.2);
+    VectorType U(s.e.locally_owned(), MPI_COMM_WORLD);
+    for (const auto &node : moving->get_nodes())
+      for (unsigned int d = 0; d < 3; ++d)
+        U[node.dofs[d]] = 0.01 * std::sin(3. * node.X[0] + node.X[2] + 2. * d);
+    moving->set_displacement(U);
+    expect_point_weights_move_the_point<3>(*rest, *moving, U, "3D, f = 0.2");
+  }
+}
+
 // R15.2: a piece's key (its facet's number in the whole surface and its
 // role there) names it whichever facets a process holds; on a chain with
 // mirrored ends and transitions every piece has its own key, and the key
