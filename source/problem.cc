@@ -690,7 +690,10 @@ namespace glide
     // plane is not its gap to the master (it has left the corner it
     // alternated at), that is not the scene's answer: the step fails and
     // is cut back instead.
-    if (result.converged && held)
+    // Also where the step made no hold of its own: vertex holds carried
+    // over from the last step (NodeToSurfaceFinite::commit_step()) hold
+    // nodes that may have left their vertex since.
+    if (result.converged && (held || contact.n_held() > 0))
       {
         std::ostringstream message;
         if (const double error = contact.held_gap_error(U_trial);

@@ -1055,6 +1055,16 @@ namespace glide
   }
 
   template <int dim>
+  unsigned int
+  Contact<dim>::n_held() const
+  {
+    unsigned int n = 0;
+    for (const auto &pair : pairs)
+      n += pair.formulation->n_held();
+    return Utilities::MPI::sum(n, comm);
+  }
+
+  template <int dim>
   double
   Contact<dim>::held_force_effect(const VectorType &U_in) const
   {

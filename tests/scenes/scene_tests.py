@@ -702,7 +702,8 @@ def compare_with_serial(what, serial, parallel, serial_out, parallel_out, pair, 
     position) the same status, and position and CPRESS within @p rel of
     their largest values."""
     check(len(serial) == len(parallel), f"{what}: {len(parallel)} steps, serial {len(serial)}")
-    forces = [k for k in serial[0] if "force" in k or k.startswith("reaction_")]
+    forces = [k for k in serial[0] if ("force" in k and not k.endswith("_held_force_effect"))
+              or k.startswith("reaction_")]
     scale = max(abs(r[k]) for r in serial for k in forces)
     worst = 0.
     for s, p in zip(serial, parallel):
@@ -725,11 +726,14 @@ def compare_with_serial(what, serial, parallel, serial_out, parallel_out, pair, 
     check(all(a[k]["CSTATUS"] == b[k]["CSTATUS"] for k in a if k in b), f"{what}: the same status at every node")
     check(dp <= rel and dx <= rel, f"{what}: nodal CPRESS and positions as on one process "
           f"(largest differences {dp:.1e}, {dx:.1e} of the largest)")
+    # CSLIP within rel of the largest slip, or of a millionth of the
+    # coordinates where the slip is round-off.
     slip = max(n.get("CSLIP", 0.) for n in a.values())
     if slip > 0.:
-        ds = max(abs(a[k]["CSLIP"] - b[k]["CSLIP"]) for k in a if k in b) / slip
-        check(ds <= rel, f"{what}: nodal CSLIP as on one process (largest difference {ds:.1e} of the "
-              f"largest slip, {slip:.3g})")
+        scale = max(slip, 1e-6 * x_max)
+        ds = max(abs(a[k].get("CSLIP", 0.) - b[k].get("CSLIP", 0.)) for k in a if k in b) / scale
+        check(ds <= rel, f"{what}: nodal CSLIP as on one process (largest difference {ds:.1e} of "
+              f"{scale:.3g}, the largest slip {slip:.3g})")
 
 
 def case_robustness_mpi_matches_serial():
@@ -3030,8 +3034,8 @@ def case_robustness_faceted():
                             degree=2, **cases["ratio 3, block slave"])
     what = "f = 0, ratio 3, block slave, degree 2, level 0"
     check(r["converged"], f"{what}: converged")
-    check("move their nodal forces by up to" in r["log"],
-          f"{what}: a step whose held nodes could move their nodal forces by more than 5 % failed")
+    check("step failed: the gaps of slave nodes held on one master facet" in r["log"] and r["cut_backs"] >= 1,
+          f"{what}: a step whose held nodes could move their nodal forces by more than 5 % failed and was cut back")
     if r["converged"]:
         print(f"measured: {what}: iterations {r['iterations']}, cut-backs {r['cut_backs']}")
         close(abs(r["force"]), r["P"], 1e-6, f"{what}: contact force = P")

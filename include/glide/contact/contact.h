@@ -148,6 +148,10 @@ namespace glide
     double
     held_gap_error(const VectorType &U) const;
 
+    /// Number of held slave nodes of all pairs and processes (collective).
+    unsigned int
+    n_held() const;
+
     /// At iterate @p U, the largest held_force_effect() of any pair: how
     /// far the held nodes' gap errors may move their nodal forces,
     /// relative to their pair's largest (0 without holds).
