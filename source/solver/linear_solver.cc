@@ -204,6 +204,24 @@ namespace glide
     // contact_3d.py, doc/performance.md): at 1.1e5 DoFs 769 instead of
     // 1079 MiB and 32 instead of 44 s, GMRES iterations 273 against 267.
     list.set("aggregation: damping factor", 0.);
+    // The Chebyshev smoother needs the largest eigenvalue of D^{-1} M. ML
+    // estimates it by default with CG (Lanczos), which assumes a symmetric
+    // matrix; the condensed contact system is not symmetric (the closed
+    // nodes' constraint rows), and there the estimate fell short, the
+    // smoother amplified the modes above it, and GMRES stalled. Measured
+    // on the 2D elastic Hertz scene (hertz-2d-elastic.prm, node to
+    // surface, 2 steps): with 6 and 4 local refinements 3244 and 2403
+    // GMRES iterations per step with CG, 370 and 322 with the power
+    // method, the same Newton iterations; with 7 and 5 the CG estimate
+    // made GMRES stall in 92 solves and the run failed after 6 cut-backs
+    // (252 s), the power method finished without cut-back (6 s). On the
+    // 3D mortar Hertz scene (study/contact_3d.py, 35 000 and 1.1e5 DoFs)
+    // both take about the same GMRES iterations (214 against 226, 319
+    // against 283) and time. A slave 1e6 times stiffer than its master
+    // (3D mortar, 16 x 8 x 16 block) failed with CG's estimate (13
+    // cut-backs) and now takes the direct solver's Newton iterations.
+    if (condensation)
+      list.set("eigen-analysis: type", std::string("power-method"));
     // Aggregate nodes, not single DoFs: a node's displacement components
     // are consecutive DoFs (deal.II's numbering of FESystem, not
     // renumbered) and every process owns whole nodes. Six rigid-body modes
